@@ -1,0 +1,28 @@
+#pragma once
+// The vectorizable random lattice (Moukarzel & Herrmann 1992): one Voronoi site thrown in each cell
+// of a square grid of spacing g, inside a square of side a = disorder * g centred in the cell (or a
+// disc of radius a), cut to a rectangle (cells clipped to the box) or to a disc (whole cells of a
+// square tessellation whose centroid lies within the radius). See shared/physics/polygon-dem.md §1.
+#include <cstdint>
+#include <string>
+
+#include "mesh/cell_mesh.hpp"
+
+namespace frac::mesh {
+
+struct RandomLatticeOptions {
+  std::string shape = "rect";        // "rect" or "disc"
+  double width = 0.0, height = 0.0;  // m, rectangle size
+  std::int64_t nx = 0, ny = 0;       // rectangle: grid cells along x and y (spacing = width / nx)
+  double diameter = 0.0;             // m, disc diameter
+  std::int64_t cells = 0;            // disc: requested number of cells (spacing = sqrt(pi R^2 / cells))
+  double disorder = 1.0;             // a / g in [0, 1]
+  std::string disorder_region = "square";  // "square" or "disc"
+  std::uint64_t seed = 1;
+  double min_section = 1e-6;         // beams whose shared side is below min_section * g are dropped
+};
+
+// Throws UsageError (naming the option) for invalid options.
+CellMesh make_random_lattice(const RandomLatticeOptions& opt);
+
+}  // namespace frac::mesh
