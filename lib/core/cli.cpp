@@ -1,0 +1,163 @@
+#include "core/cli.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/version.hpp"
+
+namespace frac::cli {
+
+void add_common(po::options_description& desc, CommonOptions& common, unsigned which) {
+  auto add = desc.add_options();
+  if (which & kOutput)
+    add("output,o", po::value(&common.output)->default_value("-"),
+        "output file; '-' writes the HDF5 file to standard output");
+  if (which & kSeed) add("seed", po::value(&common.seed)->default_value(1), "seed of the random generator");
+  if (which & kQuiet) add("quiet,q", po::bool_switch(&common.quiet), "print nothing but errors");
+  if (which & kConfig) add("config", po::value(&common.config), "read options from FILE (key = value lines)");
+}
+
+po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec, po::options_description& desc,
+                        const po::positional_options_description& positional) {
+  po::options_description general("General");
+  general.add_options()("help,h", "show this help and exit")("version", "show the version and exit");
+  po::options_description all;
+  all.add(desc).add(general);
+
+  po::variables_map vm;
+  try {
+    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+    if (vm.count("help")) {
+      std::cout << "Usage: " << spec.name << " " << spec.usage << "\n\n" << spec.summary << "\n\n"
+                << all << "\nExample:\n" << spec.example << "\n";
+      throw Exit{kExitOk};
+    }
+    if (vm.count("version")) {
+      std::cout << spec.name << " " << kVersion << " (file format " << kFormatMajor << "." << kFormatMinor << ")\n";
+      throw Exit{kExitOk};
+    }
+    if (vm.count("config")) {
+      const auto path = vm["config"].as<std::string>();
+      std::ifstream in(path);
+      if (!in) throw UsageError("--config: cannot read '" + path + "'");
+      po::store(po::parse_config_file(in, desc), vm);
+    }
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw UsageError(e.what());
+  }
+  return vm;
+}
+
+int run_tool(const std::string& tool, const std::function<int()>& body) {
+  auto fail = [&](const char* what, int code) {
+    std::fflush(stdout);
+    std::cout.flush();
+    std::cerr << tool << ": error: " << what << "\n";
+    if (code == kExitBadInput) std::cerr << "Try '" << tool << " --help'.\n";
+    return code;
+  };
+  try {
+    return body();
+  } catch (const Exit& e) {
+    return e.code;
+  } catch (const UsageError& e) {
+    return fail(e.what(), kExitBadInput);
+  } catch (const InputError& e) {
+    return fail(e.what(), kExitBadInput);
+  } catch (const po::error& e) {
+    return fail(e.what(), kExitBadInput);
+  } catch (const std::exception& e) {
+    return fail(e.what(), kExitRuntime);
+  }
+}
+
+int run_subcommands(const std::string& tool, int argc, const char* const* argv,
+                    const std::map<std::string, std::pair<std::string, Subcommand>>& table) {
+  return run_tool(tool, [&]() -> int {
+    const std::string first = argc > 1 ? argv[1] : "";
+    if (first == "--version") {
+      std::cout << tool << " " << kVersion << " (file format " << kFormatMajor << "." << kFormatMinor << ")\n";
+      return kExitOk;
+    }
+    if (first.empty() || first == "--help" || first == "-h") {
+      std::ostream& out = first.empty() ? std::cerr : std::cout;
+      out << "Usage: " << tool << " COMMAND [options]\n\nCommands:\n";
+      for (const auto& [name, entry] : table) out << "  " << name << std::string(14 - std::min<std::size_t>(13, name.size()), ' ') << entry.first << "\n";
+      out << "\n'" << tool << " COMMAND --help' describes a command, with an example.\n";
+      return first.empty() ? kExitBadInput : kExitOk;
+    }
+    const auto it = table.find(first);
+    if (it == table.end()) throw UsageError("unknown command '" + first + "'");
+    return it->second.second(argc - 1, argv + 1, command_line(argc, argv));
+  });
+}
+
+std::string command_line(int argc, const char* const* argv) {
+  std::string out;
+  for (int k = 0; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (k) out += ' ';
+    const bool plain = !arg.empty() && arg.find_first_not_of(
+        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,+@%") == std::string::npos;
+    if (plain) {
+      out += arg;
+    } else {
+      out += '\'';
+      for (char c : arg) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+      out += '\'';
+    }
+  }
+  return out;
+}
+
+namespace {
+template <class T>
+std::array<T, 2> parse_pair(const std::string& text, const std::string& option) {
+  const auto x = text.find_first_of("xX");
+  std::array<T, 2> out{};
+  bool ok = x != std::string::npos && x > 0 && x + 1 < text.size();
+  for (int k = 0; ok && k < 2; ++k) {
+    const std::string part = k == 0 ? text.substr(0, x) : text.substr(x + 1);
+    std::istringstream in(part);
+    in >> out[k];
+    ok = static_cast<bool>(in) && in.peek() == std::char_traits<char>::eof();
+  }
+  if (!ok) throw UsageError(option + ": expected two values written AxB, got '" + text + "'");
+  return out;
+}
+}  // namespace
+
+std::array<double, 2> parse_pair_double(const std::string& text, const std::string& option) {
+  return parse_pair<double>(text, option);
+}
+std::array<std::int64_t, 2> parse_pair_int(const std::string& text, const std::string& option) {
+  return parse_pair<std::int64_t>(text, option);
+}
+
+std::vector<std::pair<std::string, std::string>> resolved_options(const po::variables_map& vm) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [key, value] : vm) {
+    if (key == "help" || key == "version" || key == "output" || key == "quiet" || key == "config") continue;
+    const auto& v = value.value();
+    std::ostringstream text;
+    text.precision(17);
+    if (const auto* s = boost::any_cast<std::string>(&v)) text << *s;
+    else if (const auto* d = boost::any_cast<double>(&v)) text << *d;
+    else if (const auto* i = boost::any_cast<int>(&v)) text << *i;
+    else if (const auto* l = boost::any_cast<long>(&v)) text << *l;
+    else if (const auto* ll = boost::any_cast<long long>(&v)) text << *ll;
+    else if (const auto* u = boost::any_cast<unsigned long>(&v)) text << *u;
+    else if (const auto* b = boost::any_cast<bool>(&v)) text << (*b ? "true" : "false");
+    else if (const auto* vs = boost::any_cast<std::vector<std::string>>(&v)) {
+      for (std::size_t k = 0; k < vs->size(); ++k) text << (k ? " " : "") << (*vs)[k];
+    } else text << "?";
+    out.emplace_back(key, text.str());
+  }
+  return out;
+}
+
+}  // namespace frac::cli

@@ -1,0 +1,36 @@
+#pragma once
+// Provenance: who made a file, how, from what. Every output carries the history of its inputs
+// plus one new entry for the tool that wrote it (newest first): the lineage of every number.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace frac {
+
+struct ProvenanceEntry {
+  std::string time;          // UTC, ISO 8601, when the tool started
+  std::string tool;          // "mesh-gen"
+  std::string version;       // toolkit version
+  std::string command_line;  // full, shell-quoted
+  std::string file_uuid;     // uuid of the file this tool wrote
+  std::string seed;          // seed used, "" when the tool uses no randomness
+};
+
+// Everything a tool records about one run of itself.
+struct ToolRun {
+  std::string tool;
+  std::string command_line;
+  std::string started = "";                                  // filled by start_run
+  std::string seed;                                          // "" when unused
+  std::vector<std::pair<std::string, std::string>> parameters;  // resolved options
+  std::vector<std::string> input_uuids;                      // uuids of the files read
+  std::vector<ProvenanceEntry> input_history;                // their histories, concatenated
+};
+
+ToolRun start_run(const std::string& tool, const std::string& command_line);
+
+std::string utc_now_iso8601();
+// Random (version 4) UUID from the system's entropy; file identities, not simulation randomness.
+std::string make_uuid();
+
+}  // namespace frac

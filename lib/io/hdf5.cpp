@@ -1,0 +1,381 @@
+#include "io/hdf5.hpp"
+
+#include <hdf5_hl.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.hpp"
+
+namespace frac::io {
+
+Hid::Hid(hid_t id) : id_(id) {}
+
+Hid& Hid::operator=(Hid&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    o.id_ = H5I_INVALID_HID;
+  }
+  return *this;
+}
+
+void Hid::reset() {
+  if (id_ < 0) return;
+  if (H5Iis_valid(id_) > 0) {
+    switch (H5Iget_type(id_)) {
+      case H5I_FILE: H5Fclose(id_); break;
+      case H5I_GROUP: H5Gclose(id_); break;
+      case H5I_DATASET: H5Dclose(id_); break;
+      case H5I_DATASPACE: H5Sclose(id_); break;
+      case H5I_DATATYPE: H5Tclose(id_); break;
+      case H5I_ATTR: H5Aclose(id_); break;
+      case H5I_GENPROP_LST: H5Pclose(id_); break;
+      default: H5Idec_ref(id_); break;
+    }
+  }
+  id_ = H5I_INVALID_HID;
+}
+
+void silence_hdf5_errors() {
+  static const bool done = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)done;
+}
+
+namespace {
+
+std::string join(const std::string& path, std::string_view name) {
+  if (name.empty() || name == ".") return path;
+  if (name.front() == '/') return std::string(name);
+  return (path == "/" ? "/" : path + "/") + std::string(name);
+}
+
+Hid vlen_string_type() {
+  Hid t(H5Tcopy(H5T_C_S1));
+  H5Tset_size(t.get(), H5T_VARIABLE);
+  H5Tset_cset(t.get(), H5T_CSET_UTF8);
+  return t;
+}
+
+Hid simple_space(const std::vector<hsize_t>& dims) {
+  if (dims.empty()) return Hid(H5Screate(H5S_SCALAR));
+  return Hid(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+}
+
+template <class T>
+hid_t native_type();
+template <>
+hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
+template <>
+hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
+template <>
+hid_t native_type<std::uint8_t>() { return H5T_NATIVE_UINT8; }
+
+// Datasets at least this many elements are chunked and compressed (shuffle + deflate 1).
+constexpr std::size_t kCompressFrom = 1u << 16;
+
+}  // namespace
+
+Group::Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive)
+    : keep_alive_(std::move(keep_alive)), hid_(std::move(id)), file_(std::move(file)), path_(std::move(path)) {}
+
+std::string Group::where(std::string_view name) const { return file_ + ":" + join(path_, name); }
+
+bool Group::has(std::string_view name) const {
+  // H5Lexists needs every parent to exist: test the path one component at a time.
+  if (name.empty()) return false;
+  std::string prefix;
+  std::size_t start = 0;
+  if (name.front() == '/') {
+    prefix.push_back('/');
+    start = 1;
+  }
+  while (start < name.size()) {
+    std::size_t slash = name.find('/', start);
+    if (slash == std::string_view::npos) slash = name.size();
+    if (slash > start) {
+      if (!prefix.empty() && prefix.back() != '/') prefix.push_back('/');
+      prefix.append(name.data() + start, slash - start);
+      if (H5Lexists(id(), prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+    }
+    start = slash + 1;
+  }
+  return true;
+}
+
+Group Group::group(std::string_view name) const {
+  if (!has(name)) throw InputError(where(name) + ": no such group");
+  Hid g(H5Gopen2(id(), std::string(name).c_str(), H5P_DEFAULT));
+  if (g.get() < 0) throw InputError(where(name) + ": not a group");
+  return Group(std::move(g), file_, join(path_, name), keep_alive_);
+}
+
+Group Group::create_group(std::string_view name) {
+  if (has(name)) return group(name);
+  Hid lcpl(H5Pcreate(H5P_LINK_CREATE));
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  Hid gcpl(H5Pcreate(H5P_GROUP_CREATE));
+  H5Pset_obj_track_times(gcpl.get(), 0);
+  Hid g(H5Gcreate2(id(), std::string(name).c_str(), lcpl.get(), gcpl.get(), H5P_DEFAULT));
+  if (g.get() < 0) throw RuntimeError(where(name) + ": cannot create group");
+  return Group(std::move(g), file_, join(path_, name), keep_alive_);
+}
+
+void Group::write_raw(std::string_view name, hid_t mem_type, hid_t file_type, const void* data,
+                      const std::vector<hsize_t>& dims, std::size_t count, std::string_view unit) {
+  hsize_t expected = 1;
+  for (auto n : dims) expected *= n;
+  if (expected != count)
+    throw RuntimeError(where(name) + ": " + std::to_string(count) + " values do not fill a dataset of " +
+                       std::to_string(expected));
+  Hid space = simple_space(dims);
+  Hid lcpl(H5Pcreate(H5P_LINK_CREATE));
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_obj_track_times(dcpl.get(), 0);
+  if (count >= kCompressFrom && !dims.empty()) {
+    std::vector<hsize_t> chunk = dims;
+    hsize_t row = 1;
+    for (std::size_t k = 1; k < dims.size(); ++k) row *= dims[k];
+    chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, row)));
+    H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_shuffle(dcpl.get());
+    H5Pset_deflate(dcpl.get(), 1);
+  }
+  Hid d(H5Dcreate2(id(), std::string(name).c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT));
+  if (d.get() < 0) throw RuntimeError(where(name) + ": cannot create dataset");
+  if (count > 0 && H5Dwrite(d.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw RuntimeError(where(name) + ": cannot write dataset");
+  if (!unit.empty()) set_attr("unit", unit, name);
+}
+
+void Group::write(std::string_view name, std::span<const double> data, const std::vector<hsize_t>& dims,
+                  std::string_view unit) {
+  write_raw(name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data.data(), dims, data.size(), unit);
+}
+void Group::write(std::string_view name, std::span<const std::int64_t> data, const std::vector<hsize_t>& dims,
+                  std::string_view unit) {
+  write_raw(name, H5T_NATIVE_INT64, H5T_STD_I64LE, data.data(), dims, data.size(), unit);
+}
+void Group::write(std::string_view name, std::span<const std::uint8_t> data, const std::vector<hsize_t>& dims,
+                  std::string_view unit) {
+  write_raw(name, H5T_NATIVE_UINT8, H5T_STD_U8LE, data.data(), dims, data.size(), unit);
+}
+
+void Group::write_strings(std::string_view name, const std::vector<std::string>& data) {
+  std::vector<const char*> ptrs;
+  ptrs.reserve(data.size());
+  for (const auto& s : data) ptrs.push_back(s.c_str());
+  Hid t = vlen_string_type();
+  write_raw(name, t.get(), t.get(), ptrs.data(), {data.size()}, data.size(), "");
+}
+
+template <class T>
+std::vector<T> Group::read(std::string_view name, std::vector<hsize_t>* dims_out, int rank, hsize_t columns) const {
+  if (!has(name)) throw InputError(where(name) + ": no such dataset");
+  Hid d(H5Dopen2(id(), std::string(name).c_str(), H5P_DEFAULT));
+  if (d.get() < 0) throw InputError(where(name) + ": not a dataset");
+  Hid ftype(H5Dget_type(d.get()));
+  const H5T_class_t cls = H5Tget_class(ftype.get());
+  if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where(name) + ": not a numeric dataset");
+  Hid space(H5Dget_space(d.get()));
+  const int r = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(r, 0)));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  if (rank > 0 && r != rank)
+    throw InputError(where(name) + ": expected " + std::to_string(rank) + " dimensions, found " + std::to_string(r));
+  if (columns > 0 && (dims.empty() || dims.back() != columns))
+    throw InputError(where(name) + ": expected " + std::to_string(columns) + " columns");
+  hsize_t count = 1;
+  for (auto n : dims) count *= n;
+  std::vector<T> out(count);
+  if (count > 0 && H5Dread(d.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw InputError(where(name) + ": cannot read dataset (corrupt, or values out of range)");
+  if (dims_out) *dims_out = dims;
+  return out;
+}
+template std::vector<double> Group::read<double>(std::string_view, std::vector<hsize_t>*, int, hsize_t) const;
+template std::vector<std::int64_t> Group::read<std::int64_t>(std::string_view, std::vector<hsize_t>*, int,
+                                                             hsize_t) const;
+template std::vector<std::uint8_t> Group::read<std::uint8_t>(std::string_view, std::vector<hsize_t>*, int,
+                                                             hsize_t) const;
+
+namespace {
+// Reads strings of either kind (variable or fixed length) from a dataset or attribute.
+template <class ReadFn>
+std::vector<std::string> read_string_values(hid_t ftype, hsize_t count, ReadFn&& read_fn, const std::string& where) {
+  if (H5Tget_class(ftype) != H5T_STRING) throw InputError(where + ": not a string");
+  std::vector<std::string> out;
+  if (H5Tis_variable_str(ftype) > 0) {
+    Hid t = vlen_string_type();
+    std::vector<char*> ptrs(count, nullptr);
+    if (count > 0 && read_fn(t.get(), ptrs.data()) < 0) throw InputError(where + ": cannot read strings");
+    for (auto* p : ptrs) out.emplace_back(p ? p : "");
+    for (auto* p : ptrs) std::free(p);
+  } else {
+    const std::size_t size = H5Tget_size(ftype);
+    Hid t(H5Tcopy(H5T_C_S1));
+    H5Tset_size(t.get(), size);
+    std::vector<char> buf(size * count + 1, '\0');
+    if (count > 0 && read_fn(t.get(), buf.data()) < 0) throw InputError(where + ": cannot read strings");
+    for (hsize_t k = 0; k < count; ++k) out.emplace_back(strnlen(buf.data() + k * size, size) ? std::string(buf.data() + k * size, strnlen(buf.data() + k * size, size)) : "");
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<std::string> Group::read_strings(std::string_view name) const {
+  if (!has(name)) throw InputError(where(name) + ": no such dataset");
+  Hid d(H5Dopen2(id(), std::string(name).c_str(), H5P_DEFAULT));
+  if (d.get() < 0) throw InputError(where(name) + ": not a dataset");
+  Hid ftype(H5Dget_type(d.get()));
+  Hid space(H5Dget_space(d.get()));
+  const auto count = static_cast<hsize_t>(H5Sget_simple_extent_npoints(space.get()));
+  return read_string_values(
+      ftype.get(), count, [&](hid_t mt, void* buf) { return H5Dread(d.get(), mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf); },
+      where(name));
+}
+
+Hid Group::open_object(std::string_view object) const {
+  if (object != "." && !has(object)) throw InputError(where(object) + ": no such object");
+  Hid o(H5Oopen(id(), std::string(object).c_str(), H5P_DEFAULT));
+  if (o.get() < 0) throw InputError(where(object) + ": cannot open object");
+  return o;
+}
+
+void Group::write_attr_raw(std::string_view name, std::string_view object, hid_t type, const void* data,
+                           const std::vector<hsize_t>& dims) {
+  Hid o = open_object(object);
+  const std::string n(name);
+  if (H5Aexists(o.get(), n.c_str()) > 0) H5Adelete(o.get(), n.c_str());
+  Hid space = simple_space(dims);
+  Hid a(H5Acreate2(o.get(), n.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT));
+  if (a.get() < 0 || H5Awrite(a.get(), type, data) < 0)
+    throw RuntimeError(where(object) + ": cannot write attribute '" + n + "'");
+}
+
+void Group::set_attr(std::string_view name, std::string_view value, std::string_view object) {
+  const std::string v(value);
+  const char* p = v.c_str();
+  Hid t = vlen_string_type();
+  write_attr_raw(name, object, t.get(), &p, {});
+}
+void Group::set_attr(std::string_view name, double value, std::string_view object) {
+  write_attr_raw(name, object, H5T_NATIVE_DOUBLE, &value, {});
+}
+void Group::set_attr(std::string_view name, std::int64_t value, std::string_view object) {
+  write_attr_raw(name, object, H5T_NATIVE_INT64, &value, {});
+}
+void Group::set_attr(std::string_view name, const std::vector<std::int64_t>& value, std::string_view object) {
+  write_attr_raw(name, object, H5T_NATIVE_INT64, value.data(), {value.size()});
+}
+void Group::set_attr(std::string_view name, const std::vector<double>& value, std::string_view object) {
+  write_attr_raw(name, object, H5T_NATIVE_DOUBLE, value.data(), {value.size()});
+}
+void Group::set_attr(std::string_view name, const std::vector<std::string>& value, std::string_view object) {
+  std::vector<const char*> ptrs;
+  for (const auto& s : value) ptrs.push_back(s.c_str());
+  Hid t = vlen_string_type();
+  write_attr_raw(name, object, t.get(), ptrs.data(), {value.size()});
+}
+
+bool Group::has_attr(std::string_view name, std::string_view object) const {
+  if (object != "." && !has(object)) return false;
+  return H5Aexists_by_name(id(), std::string(object).c_str(), std::string(name).c_str(), H5P_DEFAULT) > 0;
+}
+
+Hid Group::open_attr(std::string_view name, std::string_view object) const {
+  if (!has_attr(name, object))
+    throw InputError(where(object) + ": no attribute '" + std::string(name) + "'");
+  Hid a(H5Aopen_by_name(id(), std::string(object).c_str(), std::string(name).c_str(), H5P_DEFAULT, H5P_DEFAULT));
+  if (a.get() < 0) throw InputError(where(object) + ": cannot open attribute '" + std::string(name) + "'");
+  return a;
+}
+
+std::string Group::attr_string(std::string_view name, std::string_view object) const {
+  Hid a = open_attr(name, object);
+  Hid ftype(H5Aget_type(a.get()));
+  Hid space(H5Aget_space(a.get()));
+  const auto count = static_cast<hsize_t>(H5Sget_simple_extent_npoints(space.get()));
+  auto values = read_string_values(
+      ftype.get(), count, [&](hid_t mt, void* buf) { return H5Aread(a.get(), mt, buf); },
+      where(object) + " attribute '" + std::string(name) + "'");
+  return values.empty() ? std::string() : values.front();
+}
+
+namespace {
+template <class T>
+std::vector<T> read_numeric_attr(const Hid& a, const std::string& what) {
+  Hid ftype(H5Aget_type(a.get()));
+  const H5T_class_t cls = H5Tget_class(ftype.get());
+  if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(what + ": not numeric");
+  Hid space(H5Aget_space(a.get()));
+  const auto count = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.get()));
+  std::vector<T> out(count);
+  if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0) throw InputError(what + ": cannot read");
+  return out;
+}
+}  // namespace
+
+double Group::attr_double(std::string_view name, std::string_view object) const {
+  auto v = read_numeric_attr<double>(open_attr(name, object), where(object) + " attribute '" + std::string(name) + "'");
+  if (v.size() != 1) throw InputError(where(object) + " attribute '" + std::string(name) + "': expected one value");
+  return v[0];
+}
+std::int64_t Group::attr_int(std::string_view name, std::string_view object) const {
+  auto v = read_numeric_attr<std::int64_t>(open_attr(name, object),
+                                           where(object) + " attribute '" + std::string(name) + "'");
+  if (v.size() != 1) throw InputError(where(object) + " attribute '" + std::string(name) + "': expected one value");
+  return v[0];
+}
+std::vector<std::int64_t> Group::attr_ints(std::string_view name, std::string_view object) const {
+  return read_numeric_attr<std::int64_t>(open_attr(name, object),
+                                         where(object) + " attribute '" + std::string(name) + "'");
+}
+std::vector<double> Group::attr_doubles(std::string_view name, std::string_view object) const {
+  return read_numeric_attr<double>(open_attr(name, object), where(object) + " attribute '" + std::string(name) + "'");
+}
+
+namespace {
+constexpr unsigned char kHdf5Signature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+
+std::shared_ptr<std::vector<char>> read_stdin() {
+  auto buf = std::make_shared<std::vector<char>>();
+  std::vector<char> chunk(1 << 20);
+  std::size_t n;
+  while ((n = std::fread(chunk.data(), 1, chunk.size(), stdin)) > 0) buf->insert(buf->end(), chunk.data(), chunk.data() + n);
+  if (std::ferror(stdin)) throw InputError("-: cannot read standard input");
+  return buf;
+}
+}  // namespace
+
+Group open_input(const std::string& path) {
+  silence_hdf5_errors();
+  if (path == "-") {
+    auto image = read_stdin();
+    if (image->empty()) throw InputError("-: standard input is empty (expected an HDF5 file)");
+    if (image->size() < sizeof kHdf5Signature || std::memcmp(image->data(), kHdf5Signature, sizeof kHdf5Signature) != 0)
+      throw InputError("-: standard input is not an HDF5 file");
+    // Open the bytes in place: no copy; the buffer lives as long as any group of this file.
+    const hid_t fid = H5LTopen_file_image(image->data(), image->size(),
+                                          H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
+    if (fid < 0) throw InputError("-: standard input holds a damaged HDF5 file");
+    Hid file(fid);
+    Hid root(H5Gopen2(fid, "/", H5P_DEFAULT));
+    return Group(std::move(root), "-", "/", image);
+  }
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
+  if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path + ": not an HDF5 file");
+  Hid file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (file.get() < 0) throw InputError(path + ": cannot open (damaged HDF5 file, or no permission)");
+  Hid root(H5Gopen2(file.get(), "/", H5P_DEFAULT));
+  return Group(std::move(root), path, "/");
+}
+
+}  // namespace frac::io

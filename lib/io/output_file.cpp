@@ -1,0 +1,125 @@
+#include "io/output_file.hpp"
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/provenance.hpp"
+
+namespace frac::io {
+namespace {
+
+// Temporary files to remove if the process is interrupted (SIGINT, SIGTERM, SIGHUP).
+// A fixed table of C strings: the handler may only call async-signal-safe functions.
+constexpr int kMaxTemps = 16;
+char g_temps[kMaxTemps][4096];
+volatile std::sig_atomic_t g_used[kMaxTemps];
+
+extern "C" void remove_temps_and_reraise(int sig) {
+  for (int k = 0; k < kMaxTemps; ++k)
+    if (g_used[k]) unlink(g_temps[k]);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+void install_handlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_temps_and_reraise);
+  });
+}
+
+void register_temp(const std::string& path) {
+  install_handlers();
+  for (int k = 0; k < kMaxTemps; ++k) {
+    if (!g_used[k] && path.size() < sizeof g_temps[k]) {
+      std::memcpy(g_temps[k], path.c_str(), path.size() + 1);
+      g_used[k] = 1;
+      return;
+    }
+  }
+}
+
+void unregister_temp(const std::string& path) {
+  for (int k = 0; k < kMaxTemps; ++k)
+    if (g_used[k] && path == g_temps[k]) g_used[k] = 0;
+}
+
+Hid file_access(bool in_memory) {
+  Hid fapl(H5Pcreate(H5P_FILE_ACCESS));
+  // Strong close: closing the file closes every object still open in it, so commit() can rename.
+  H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
+  if (in_memory) H5Pset_fapl_core(fapl.get(), 16u << 20, 0);
+  return fapl;
+}
+
+}  // namespace
+
+OutputFile::OutputFile(std::string path) : path_(std::move(path)), uuid_(make_uuid()) {
+  silence_hdf5_errors();
+  if (path_.empty()) throw UsageError("--output: empty file name");
+  if (path_ == "-") {
+    if (isatty(STDOUT_FILENO))
+      throw UsageError("refusing to write an HDF5 file to a terminal: give -o FILE or redirect standard output");
+    Hid fapl = file_access(true);
+    file_ = Hid(H5Fcreate(("stdout-" + uuid_ + ".h5").c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()));
+    if (file_.get() < 0) throw RuntimeError("-: cannot create the in-memory HDF5 file");
+  } else {
+    const std::filesystem::path target(path_);
+    const auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+      throw UsageError(path_ + ": folder '" + dir.string() + "' does not exist");
+    temp_ = (dir / ("." + target.filename().string() + ".tmp-" + uuid_.substr(0, 8))).string();
+    register_temp(temp_);
+    Hid fapl = file_access(false);
+    file_ = Hid(H5Fcreate(temp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
+    if (file_.get() < 0) {
+      unregister_temp(temp_);
+      throw RuntimeError(path_ + ": cannot create file (permission or disk space?)");
+    }
+  }
+  root_.emplace(Hid(H5Gopen2(file_.get(), "/", H5P_DEFAULT)), path_, "/");
+}
+
+OutputFile::~OutputFile() {
+  if (committed_) return;
+  root_.reset();
+  file_.reset();
+  if (!temp_.empty()) {
+    std::remove(temp_.c_str());
+    unregister_temp(temp_);
+  }
+}
+
+void OutputFile::commit() {
+  if (committed_) return;
+  if (path_ == "-") {
+    if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw RuntimeError("-: cannot finish the HDF5 file");
+    const ssize_t size = H5Fget_file_image(file_.get(), nullptr, 0);
+    if (size <= 0) throw RuntimeError("-: cannot take the HDF5 file image");
+    std::vector<char> image(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file_.get(), image.data(), image.size()) != size)
+      throw RuntimeError("-: cannot take the HDF5 file image");
+    root_.reset();
+    file_.reset();
+    if (std::fwrite(image.data(), 1, image.size(), stdout) != image.size() || std::fflush(stdout) != 0)
+      throw RuntimeError("-: cannot write to standard output (" + std::string(std::strerror(errno)) + ")");
+  } else {
+    root_.reset();
+    if (H5Fclose(file_.release()) < 0) throw RuntimeError(path_ + ": cannot finish writing the file");
+    std::error_code ec;
+    std::filesystem::rename(temp_, path_, ec);
+    if (ec) throw RuntimeError(path_ + ": cannot move the finished file into place: " + ec.message());
+    unregister_temp(temp_);
+  }
+  committed_ = true;
+}
+
+}  // namespace frac::io

@@ -1,0 +1,38 @@
+#pragma once
+// Atomic HDF5 output. A named file is written under a temporary name in the same folder and renamed
+// into place by commit(); "-" builds the file in memory (HDF5 core driver) and commit() writes its
+// image to standard output. Without commit() (an exception, a signal) nothing appears: a crash never
+// leaves a half-written file that Make would take as done.
+#include <optional>
+#include <string>
+
+#include "io/hdf5.hpp"
+
+namespace frac::io {
+
+class OutputFile {
+ public:
+  // Throws UsageError when `path` is "-" and standard output is a terminal, or the folder is missing.
+  explicit OutputFile(std::string path);
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  ~OutputFile();
+
+  Group& root() { return *root_; }
+  const std::string& path() const { return path_; }
+  // The new file's identity, recorded in /provenance.
+  const std::string& uuid() const { return uuid_; }
+
+  // Closes the file and makes it appear (rename, or the image written to standard output).
+  void commit();
+
+ private:
+  std::string path_;
+  std::string temp_;  // temporary name ("" for standard output)
+  std::string uuid_;
+  Hid file_;
+  std::optional<Group> root_;
+  bool committed_ = false;
+};
+
+}  // namespace frac::io

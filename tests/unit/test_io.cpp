@@ -1,0 +1,206 @@
+// The HDF5 layer: round trips of both meshes, header checks, provenance lineage, atomic output.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/provenance.hpp"
+#include "io/header.hpp"
+#include "io/mesh_io.hpp"
+#include "io/output_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace frac;
+
+namespace {
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("fracture-test-io-" + name + "-" + make_uuid().substr(0, 8));
+  fs::create_directories(dir);
+  return dir;
+}
+
+mesh::CellMesh two_squares() {
+  // Two unit squares side by side, sharing the side x = 1: one beam of length 1 and section 1.
+  mesh::CellMesh m;
+  for (int k = 0; k < 2; ++k) {
+    for (auto v : {mesh::Vec2(-0.5, -0.5), mesh::Vec2(0.5, -0.5), mesh::Vec2(0.5, 0.5), mesh::Vec2(-0.5, 0.5)})
+      m.vertex.push_back(v);
+    m.vertex_offset.push_back(m.vertex_offset.back() + 4);
+    m.centroid.emplace_back(0.5 + k, 0.5);
+    m.area.push_back(1.0);
+    m.second_moment.push_back(1.0 / 6.0);
+  }
+  m.beam = {{0, 1}};
+  m.beam_length = {1.0};
+  m.beam_section = {1.0};
+  m.shape = "rect";
+  m.spacing = 1.0;
+  m.disorder = 0.0;
+  m.bounds = {0, 0, 2, 1};
+  return m;
+}
+
+ToolRun test_run() {
+  ToolRun run = start_run("test-tool", "test-tool --x 1");
+  run.parameters = {{"x", "1"}};
+  run.seed = "42";
+  return run;
+}
+
+}  // namespace
+
+TEST(Io, CellMeshRoundTrip) {
+  const auto dir = temp_dir("cells");
+  const auto path = (dir / "m.h5").string();
+  const auto m = two_squares();
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::write_mesh(out.root(), m);
+    out.commit();
+  }
+  const auto root = io::open_input(path);
+  EXPECT_EQ(io::check_header(root, {"mesh"}), "mesh");
+  ASSERT_EQ(io::mesh_kind(root), io::MeshKind::cells);
+  const auto r = io::read_cell_mesh(root);
+  EXPECT_EQ(r.vertex_offset, m.vertex_offset);
+  EXPECT_EQ(r.vertex, m.vertex);
+  EXPECT_EQ(r.centroid, m.centroid);
+  EXPECT_EQ(r.area, m.area);
+  EXPECT_EQ(r.second_moment, m.second_moment);
+  EXPECT_EQ(r.beam, m.beam);
+  EXPECT_EQ(r.beam_length, m.beam_length);
+  EXPECT_EQ(r.beam_section, m.beam_section);
+  EXPECT_EQ(r.shape, "rect");
+  EXPECT_EQ(r.bounds, m.bounds);
+  EXPECT_EQ(root.attr_string("unit", "particles/cells/area"), "m^2");
+  fs::remove_all(dir);
+}
+
+TEST(Io, NodeMeshRoundTrip) {
+  const auto dir = temp_dir("nodes");
+  const auto path = (dir / "n.h5").string();
+  mesh::NodeMesh m;
+  m.position = {{0, 0}, {1, 0}, {0.5, 0.8660254037844386}, {1.5, 0.8660254037844386}};
+  m.nx = 2, m.ny = 2, m.spacing = 1.0;
+  m.bond = {{0, 1}, {0, 2}, {1, 2}, {1, 3}, {2, 3}};
+  m.bond_length.assign(5, 1.0);
+  m.intact = {1, 1, 0, 1, 1};
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::write_mesh(out.root(), m);
+    out.commit();
+  }
+  const auto root = io::open_input(path);
+  ASSERT_EQ(io::mesh_kind(root), io::MeshKind::nodes);
+  const auto r = io::read_node_mesh(root);
+  EXPECT_EQ(r.position, m.position);
+  EXPECT_EQ(r.bond, m.bond);
+  EXPECT_EQ(r.intact, m.intact);
+  EXPECT_EQ(r.nx, 2);
+  fs::remove_all(dir);
+}
+
+TEST(Io, ProvenanceCarriesTheLineage) {
+  const auto dir = temp_dir("prov");
+  const auto first = (dir / "first.h5").string(), second = (dir / "second.h5").string();
+  std::string first_uuid;
+  {
+    io::OutputFile out(first);
+    first_uuid = out.uuid();
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    out.commit();
+  }
+  {
+    ToolRun run = start_run("second-tool", "second-tool first.h5");
+    io::add_input(run, io::open_input(first));
+    io::OutputFile out(second);
+    io::write_header(out.root(), "mesh", run, out.uuid());
+    out.commit();
+  }
+  const auto prov = io::read_provenance(io::open_input(second));
+  ASSERT_EQ(prov.history.size(), 2u);
+  EXPECT_EQ(prov.history[0].tool, "second-tool");  // newest first
+  EXPECT_EQ(prov.history[0].file_uuid, prov.file_uuid);
+  EXPECT_EQ(prov.history[1].tool, "test-tool");
+  EXPECT_EQ(prov.history[1].file_uuid, first_uuid);
+  EXPECT_EQ(prov.history[1].seed, "42");
+  EXPECT_EQ(io::open_input(second).read_strings("provenance/inputs"), std::vector<std::string>{first_uuid});
+  fs::remove_all(dir);
+}
+
+TEST(Io, OutputAppearsOnlyOnCommit) {
+  const auto dir = temp_dir("atomic");
+  const auto path = dir / "out.h5";
+  {
+    io::OutputFile out(path.string());
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    EXPECT_FALSE(fs::exists(path));  // written under a temporary name
+    // No commit: as if the tool failed half way.
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_TRUE(fs::is_empty(dir)) << "temporary file left behind";
+  {
+    io::OutputFile out(path.string());
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    out.commit();
+  }
+  EXPECT_TRUE(fs::exists(path));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
+}
+
+TEST(Io, RefusesUnknownVersionKindAndMissingMesh) {
+  const auto dir = temp_dir("refuse");
+  const auto path = (dir / "v.h5").string();
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "fit", test_run(), out.uuid());
+    out.root().set_attr("format_version", std::vector<std::int64_t>{7, 3});
+    out.commit();
+  }
+  const auto root = io::open_input(path);
+  try {
+    io::check_header(root, {"mesh"});
+    FAIL() << "accepted format version 7.3";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("format version 7.3 is not supported"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(io::mesh_kind(root), InputError);
+  EXPECT_THROW(io::open_input((dir / "missing.h5").string()), InputError);
+  EXPECT_THROW(root.read<double>("particles/cells/area"), InputError);
+  fs::remove_all(dir);
+}
+
+TEST(Io, ReadingChecksShapesAndNamesTheDataset) {
+  const auto dir = temp_dir("shapes");
+  const auto path = (dir / "s.h5").string();
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::write_mesh(out.root(), two_squares());
+    // Replace the areas by a dataset one row too long.
+    H5Ldelete(out.root().id(), "particles/cells/area", H5P_DEFAULT);
+    const std::vector<double> three{1.0, 1.0, 1.0};
+    out.root().write("particles/cells/area", std::span<const double>(three), {3}, "m^2");
+    out.commit();
+  }
+  try {
+    io::read_cell_mesh(io::open_input(path));
+    FAIL() << "accepted an area dataset of the wrong length";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/particles/cells/area"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Io, WriteRefusesDataThatDoesNotMatchItsShape) {
+  const auto dir = temp_dir("mismatch");
+  io::OutputFile out((dir / "x.h5").string());
+  const std::vector<double> three{1.0, 2.0, 3.0};
+  EXPECT_THROW(out.root().write("x", std::span<const double>(three), {2}), RuntimeError);
+  fs::remove_all(dir);
+}
