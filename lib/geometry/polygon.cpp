@@ -59,12 +59,19 @@ double equal_area_diameter(double area) { return 2.0 * std::sqrt(area / std::num
 bool is_convex_ccw(std::span<const Vec2> poly, double tol) {
   const std::size_t n = poly.size();
   if (n < 3 || signed_area(poly) <= 0.0) return false;
+  // No right turn beyond tolerance, and the edge direction turns once around in total: a
+  // self-intersecting star (the pentagram 0-2-4-1-3) has only left turns and positive area, but
+  // turns twice around (4 pi).
+  double turning = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 e1 = poly[(k + 1) % n] - poly[k];
     const Vec2 e2 = poly[(k + 2) % n] - poly[(k + 1) % n];
-    if (cross(e1, e2) < -tol * e1.norm() * e2.norm()) return false;
+    const double c = cross(e1, e2);
+    if (c < -tol * e1.norm() * e2.norm()) return false;
+    turning += std::atan2(c, e1.dot(e2));
   }
-  return true;
+  // A closed polygon turns by a multiple of 2 pi; accept only once around.
+  return std::abs(turning - 2.0 * std::numbers::pi) < std::numbers::pi;
 }
 
 Polygon clip_half_plane(std::span<const Vec2> subject, const Vec2& a, const Vec2& b, double tol) {
@@ -75,19 +82,21 @@ Polygon clip_half_plane(std::span<const Vec2> subject, const Vec2& a, const Vec2
   const Vec2 d = b - a;
   const double len = d.norm();
   if (len == 0.0) return Polygon(subject.begin(), subject.end());
-  // Signed distance from the line, positive on the left.
-  auto side = [&](const Vec2& p) { return cross(d, p - a) / len; };
+  // Distance inside the widened half-plane s >= -tol, where s is the signed distance from the line
+  // (positive on the left). Crossings are placed on its border s = -tol, so that the result is the
+  // exact intersection with that half-plane (a crossing at s = 0 would lie outside the segment pq
+  // when p is inside only by tolerance).
+  auto inside = [&](const Vec2& p) { return cross(d, p - a) / len + tol; };
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2& p = subject[k];
     const Vec2& q = subject[(k + 1) % n];
-    const double sp = side(p), sq = side(q);
-    const bool pin = sp >= -tol, qin = sq >= -tol;
+    const double sp = inside(p), sq = inside(q);
+    const bool pin = sp >= 0.0, qin = sq >= 0.0;
     if (pin) out.push_back(p);
-    if (pin != qin) {
-      // Crossing strictly between p and q (sp and sq have opposite signs beyond tol).
-      const double t = sp / (sp - sq);
-      out.push_back(p + t * (q - p));
-    }
+    // A crossing strictly between p and q. When the inside end lies exactly on the border the
+    // crossing is that end itself, already in the output (or about to be): do not duplicate it.
+    if (pin && !qin && sp > 0.0) out.push_back(p + (sp / (sp - sq)) * (q - p));
+    if (!pin && qin && sq > 0.0) out.push_back(p + (sp / (sp - sq)) * (q - p));
   }
   return out;
 }

@@ -3,6 +3,15 @@
 // of a square grid of spacing g, inside a square of side a = disorder * g centred in the cell (or a
 // disc of radius a), cut to a rectangle (cells clipped to the box) or to a disc (whole cells of a
 // square tessellation whose centroid lies within the radius). See shared/physics/polygon-dem.md §1.
+//
+// Conventions. Rectangle: box [0, W] x [0, H], g = W / nx, which must equal H / ny within 1e-9
+// relative; cell j nx + i comes from grid cell (i, j). Disc: centred on the origin, g = sqrt(pi R^2 /
+// cells), a square grid covering [-R - 4g, R + 4g]^2 is tessellated and the cells whose centroid lies
+// within R are kept, numbered in grid order (so the count only approximates `cells`); bounds =
+// [-R, R]^2, cell vertices reach up to about 2 sqrt(2) g beyond R. Random numbers: frac::Rng(seed), two
+// uniforms per grid cell in grid order (x then y; the disc region draws by rejection from [-a, a]^2).
+// A site thrown outside the box (disc region with a > g/2, boundary cells) is mirrored back across
+// the box side. Vertices closer than 1e-9 g are merged; beams need a shared side >= min_section g.
 #include <cstdint>
 #include <string>
 

@@ -19,9 +19,24 @@ struct VoronoiDiagram {
   std::vector<double> shared_side;
 };
 
-// box = {xmin, ymin, xmax, ymax}. Sites must be distinct. `merge_tol` (m) merges cell vertices
-// closer than that (the 4-fold vertices of a square grid) and drops sides shorter than it.
+// box = {xmin, ymin, xmax, ymax}. Sites must be distinct (std::invalid_argument otherwise). All sites
+// take part in the tessellation; cells and pairs are reported only for sites inside the box.
+// `merge_tol` (m) merges Voronoi vertices closer than that (the 4-fold vertices of a square grid):
+// once for all cells, so neighbouring cells keep identical shared vertices and the cells tile the box
+// to round-off. Sides not longer than it are not reported as shared. Output is deterministic: cells
+// start at their lowest (then leftmost) vertex, pairs are sorted.
 VoronoiDiagram voronoi_in_box(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box,
                               double merge_tol);
+
+// The same diagram with the cells in one flat array (no allocation per cell): cell k has vertices
+// vertex[offset[k] .. offset[k+1]) (none if its site lies outside the box); offset has size sites + 1.
+struct FlatVoronoiDiagram {
+  std::vector<std::int64_t> offset;
+  std::vector<geometry::Vec2> vertex;
+  std::vector<std::array<std::int64_t, 2>> neighbour;
+  std::vector<double> shared_side;
+};
+FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box,
+                                       double merge_tol);
 
 }  // namespace frac::mesh

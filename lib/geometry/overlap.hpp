@@ -1,0 +1,84 @@
+#pragma once
+// Overlap of two convex polygons for the DEM contact law (polygon-dem.md section 3): the overlap
+// area A_ov, the points P1, P2 where the two boundaries cross, the application point R and the
+// unit normal n. Allocation-free: all work is done in fixed-capacity buffers on the stack.
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "geometry/vec2.hpp"
+
+namespace frac::geometry {
+
+// Largest polygon convex_overlap accepts (Voronoi cells of the lattice have at most ~15 sides).
+inline constexpr std::size_t kMaxContactPolygonVertices = 32;
+// Capacity of the overlap polygon. A convex n-gon clipped by m half-planes has at most n + m
+// vertices; the margin absorbs near-duplicate vertices made by round-off.
+inline constexpr std::size_t kMaxOverlapVertices = 4 * kMaxContactPolygonVertices;
+
+// Tolerances in units of the length scale g (the cell size): eps_A = kOverlapAreaTolerance * g^2,
+// eps_L = kCrossingMergeTolerance * g.
+inline constexpr double kOverlapAreaTolerance = 1e-12;
+inline constexpr double kCrossingMergeTolerance = 1e-9;
+
+// The overlap polygon P_i ∩ P_j (counter-clockwise), in the caller's coordinates.
+struct OverlapPolygon {
+  std::array<Vec2, kMaxOverlapVertices> vertex;
+  std::size_t size = 0;
+  std::span<const Vec2> vertices() const { return {vertex.data(), size}; }
+};
+
+struct ContactGeometry {
+  // none: no contact force (A_ov <= eps_A). line: the boundaries cross; the force acts at the
+  // midpoint of the contact line P1P2. enclosed: overlap without a contact line (one polygon inside
+  // the other, identical polygons); the force acts at the overlap centroid, along c_j - c_i.
+  enum class Kind { none, line, enclosed };
+  Kind kind = Kind::none;
+  double area = 0.0;           // A_ov (m^2); 0 when kind == none
+  Vec2 p1 = Vec2::Zero();      // contact line P1P2 (m); p1 = p2 = point when enclosed
+  Vec2 p2 = Vec2::Zero();
+  Vec2 point = Vec2::Zero();   // application point R (m)
+  Vec2 normal = Vec2::Zero();  // unit normal from i toward j, n·(c_j - c_i) >= 0; zero when none
+  int crossings = 0;           // boundary crossings found, before cancelling coincident pairs (0 if none)
+  int distinct_crossings = 0;  // after cancelling; > 2 means a corner poked through (overlap too large)
+};
+
+// Contact geometry of the convex counter-clockwise polygons P_i and P_j (at most
+// kMaxContactPolygonVertices each) with centroids c_i and c_j. `length_scale` g > 0 (the cell size)
+// sets the tolerances eps_A and eps_L. Every result is finite for finite input.
+//
+// Method. P = P_i ∩ P_j by Sutherland-Hodgman (P_i clipped by the half-planes of P_j's edges, no
+// tolerance, so A_ov is exact up to round-off; computed about P_i's first vertex, so far translation
+// costs no accuracy). Each edge of P is labelled with the polygon whose boundary it lies on. A
+// crossing is a vertex of P where the label changes. An edge of P that lies on both boundaries
+// (collinear edges of the same orientation, within eps_L; or an edge shorter than eps_L) belongs to
+// neither: a crossing next to such a run of edges is moved to the midpoint of the run. Two crossings
+// adjacent along the boundary of P and closer than eps_L are an excursion of one boundary that does
+// not cross the other (round-off at a touching vertex): the pair is cancelled. The count is even.
+//
+// Conventions for the degenerate cases (polygon-dem.md section 3, "Degenerate cases"):
+// - A_ov <= eps_A (no overlap, a shared edge, touching vertices, a sliver thinner than eps_A / length):
+//   none, with area 0 and zero vectors.
+// - 2 crossings: line; P1, P2 the crossings, R = (P1 + P2)/2, n ⊥ P2 - P1.
+// - more than 2 crossings (a corner poking through): line with the pair of crossings farthest apart;
+//   the area stays the full overlap area. distinct_crossings reports the count.
+// - 0 crossings and A_ov > eps_A (one polygon inside the other, identical polygons): enclosed;
+//   R = centroid of P, n = (c_j - c_i)/|c_j - c_i|, or +x when the centroids coincide.
+// - 1 or 3 crossings cannot occur: crossings alternate between P_i's and P_j's boundary, so they
+//   come in pairs, and cancelling removes pairs. (Were one ever left alone, it would count as 0:
+//   enclosed; three would use the farthest pair.) A touching vertex gives a pair closer than eps_L,
+//   which cancels: with A_ov > eps_A that is the enclosed case (a polygon inside touching the other's
+//   boundary), otherwise none.
+// - Collinear overlapping edges (offset squares): the crossing is the midpoint of the shared run,
+//   which makes the answer symmetric under i <-> j.
+// - n·(c_j - c_i) == 0 exactly for a contact line: n is the perpendicular whose first nonzero
+//   component is positive.
+// Throws InputError if a polygon has more than kMaxContactPolygonVertices vertices or g is not > 0.
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
+                               const Vec2& cj, double length_scale);
+
+// The same, also returning the overlap polygon (empty when it has fewer than 3 vertices).
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
+                               const Vec2& cj, double length_scale, OverlapPolygon& overlap);
+
+}  // namespace frac::geometry

@@ -1,0 +1,277 @@
+#include "mesh/check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "geometry/polygon.hpp"
+
+namespace frac::mesh {
+namespace {
+
+using geometry::cross;
+
+// Collects failure lines, keeping the report short: after `limit` lines of one kind only a count.
+class Failures {
+ public:
+  explicit Failures(std::vector<std::string>& out) : out_(out) {}
+  ~Failures() {
+    for (const auto& [kind, count] : dropped_) {
+      out_.push_back(kind + ": " + std::to_string(count) + " more");
+    }
+  }
+  Failures(const Failures&) = delete;
+  Failures& operator=(const Failures&) = delete;
+  void add(const std::string& kind, const std::string& detail) {
+    auto& n = shown_[kind];
+    if (n < limit) {
+      out_.push_back(kind + ": " + detail);
+      ++n;
+    } else {
+      ++dropped_[kind];
+    }
+  }
+
+ private:
+  static constexpr int limit = 10;
+  std::vector<std::string>& out_;
+  std::map<std::string, int> shown_;
+  std::map<std::string, std::int64_t> dropped_;
+};
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(12);
+  s << x;
+  return s.str();
+}
+
+std::string histogram_line(const std::map<int, std::int64_t>& h, std::size_t total) {
+  std::ostringstream s;
+  s.precision(3);
+  bool first = true;
+  for (const auto& [k, count] : h) {
+    s << (first ? "" : ", ") << k << ": " << count;
+    if (total > 0) s << " (" << 100.0 * static_cast<double>(count) / static_cast<double>(total) << "%)";
+    first = false;
+  }
+  return s.str();
+}
+
+// Length of the side shared by two convex counter-clockwise polygons that touch along a segment:
+// the summed overlap of every pair of antiparallel edges, one of each polygon, lying on a common
+// line (the other polygon's edge ends within `tol` of the line). Only real edges count, so a short
+// side next to the shared one does not lengthen it.
+double shared_side(std::span<const Vec2> p, std::span<const Vec2> q, double tol) {
+  const std::size_t np = p.size(), nq = q.size();
+  double total = 0.0;
+  for (std::size_t i = 0; i < np; ++i) {
+    const Vec2& a = p[i];
+    const Vec2 e = p[(i + 1) % np] - a;
+    const double len = e.norm();
+    if (len == 0.0) continue;
+    const Vec2 u = e / len;
+    for (std::size_t j = 0; j < nq; ++j) {
+      const Vec2& c = q[j];
+      const Vec2& d = q[(j + 1) % nq];
+      if (std::abs(cross(u, c - a)) > tol || std::abs(cross(u, d - a)) > tol) continue;
+      // Projections on the edge of p: [0, len] and the interval spanned by q's edge (antiparallel).
+      const double tc = u.dot(c - a), td = u.dot(d - a);
+      if (td >= tc) continue;  // same direction: not a side shared by cells on opposite sides
+      total += std::max(0.0, std::min(len, tc) - std::max(0.0, td));
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+// Tolerances are relative to the grid spacing g (or sqrt of the mean area when the spacing is not
+// set): 1e-8 g for lengths. The generator merges Voronoi vertices closer than 1e-9 g and the rest is
+// round-off of order 1e-16 of the coordinates, so 1e-8 g leaves a margin of 10 while still catching
+// any real error. Areas and second moments: 1e-9 relative (they are recomputed from the same vertices).
+MeshReport check_cell_mesh(const CellMesh& m) {
+  MeshReport r;
+  {
+    Failures fail(r.failures);  // its destructor appends the counts of failures not shown
+    [&] {
+      const std::size_t n = m.cells();
+      if (n == 0) fail.add("cells", "none");
+      bool arrays_ok = true;
+      if (m.vertex_offset.size() != n + 1) {
+        fail.add("arrays", "vertex_offset has " + std::to_string(m.vertex_offset.size()) + " entries, expected " +
+                               std::to_string(n + 1));
+        arrays_ok = false;
+      } else if (m.vertex_offset.front() != 0 || m.vertex_offset.back() != static_cast<std::int64_t>(m.vertex.size())) {
+        fail.add("arrays", "vertex_offset must run from 0 to the number of vertices");
+        arrays_ok = false;
+      }
+      if (m.area.size() != n || m.second_moment.size() != n) {
+        fail.add("arrays", "area/second_moment sizes differ from the number of cells");
+        arrays_ok = false;
+      }
+      if (m.beam_length.size() != m.beams() || m.beam_section.size() != m.beams()) {
+        fail.add("arrays", "beam_length/beam_section sizes differ from the number of beams");
+        arrays_ok = false;
+      }
+      for (std::size_t k = 0; arrays_ok && k < n; ++k) {
+        if (m.vertex_offset[k + 1] - m.vertex_offset[k] < 3) {
+          fail.add("arrays", "cell " + std::to_string(k) + " has fewer than 3 vertices (or offsets decrease)");
+          arrays_ok = false;
+        }
+      }
+      if (!arrays_ok) return;
+
+      double total_area = 0.0;
+      for (std::size_t k = 0; k < n; ++k) total_area += m.area[k];
+      const double g = m.spacing > 0.0 ? m.spacing : std::sqrt(std::abs(total_area) / static_cast<double>(n));
+      const double len_tol = 1e-8 * g;
+      const double rel_tol = 1e-9;
+
+      std::vector<int> degree(n, 0);
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto poly = m.polygon(k);
+        auto id = [&] { return std::string("cell " + std::to_string(k)); };
+        bool finite = std::isfinite(m.centroid[k].x()) && std::isfinite(m.centroid[k].y());
+        for (const auto& v : poly) finite = finite && std::isfinite(v.x()) && std::isfinite(v.y());
+        if (!finite) {
+          fail.add("finite", id() + " has a non-finite coordinate");
+          continue;
+        }
+        if (!geometry::is_convex_ccw(poly, 1e-9)) fail.add("convex", id() + " is not convex and counter-clockwise");
+        const Vec2 c = geometry::centroid(poly);
+        if (c.norm() > len_tol) {
+          fail.add("centroid", id() + ": body-frame centroid at distance " + fmt(c.norm()) + " m");
+        }
+        const double a = geometry::signed_area(poly);
+        if (std::abs(a - m.area[k]) > rel_tol * std::abs(a)) {
+          fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2, vertices give " + fmt(a));
+        }
+        const double j = geometry::polar_second_moment(poly);
+        if (std::abs(j - m.second_moment[k]) > rel_tol * std::abs(j)) {
+          fail.add("second_moment", id() + ": " + fmt(m.second_moment[k]) + " m^4, vertices give " + fmt(j));
+        }
+      }
+
+      std::vector<Vec2> pa, pb;
+      for (std::size_t e = 0; e < m.beams(); ++e) {
+        const auto [a, b] = m.beam[e];
+        auto id = [&] {
+          return std::string("beam " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
+        };
+        if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
+          fail.add("beam index", id() + " out of range");
+          continue;
+        }
+        if (a >= b) fail.add("beam order", id() + ": need cell_a < cell_b");
+        if (e > 0 && !(m.beam[e - 1] < m.beam[e])) {
+          fail.add(m.beam[e - 1] == m.beam[e] ? "beam duplicate" : "beam order",
+                   id() + " follows " + std::to_string(m.beam[e - 1][0]) + ", " + std::to_string(m.beam[e - 1][1]));
+        }
+        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+        ++degree[ua];
+        ++degree[ub];
+        const double l0 = (m.centroid[ub] - m.centroid[ua]).norm();
+        if (!(std::abs(m.beam_length[e] - l0) <= len_tol)) {
+          fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m, centroids " + fmt(l0) + " m apart");
+        }
+        if (!(m.beam_section[e] > 0.0)) {
+          fail.add("beam section", id() + ": section " + fmt(m.beam_section[e]) + " m is not positive");
+          continue;
+        }
+        pa.clear();  // world polygons in reused buffers
+        pb.clear();
+        for (const auto& v : m.polygon(ua)) pa.push_back(v + m.centroid[ua]);
+        for (const auto& v : m.polygon(ub)) pb.push_back(v + m.centroid[ub]);
+        const double s = shared_side(pa, pb, len_tol);
+        if (!(std::abs(m.beam_section[e] - s) <= len_tol)) {
+          fail.add("beam section", id() + ": section " + fmt(m.beam_section[e]) + " m, shared side " + fmt(s) + " m");
+        }
+      }
+
+      for (const int d : degree) ++r.neighbour_count[d];
+
+      std::ostringstream s;
+      s.precision(6);
+      s << "cells: " << n << " (" << (m.shape.empty() ? "?" : m.shape) << ", spacing " << m.spacing << " m, disorder "
+        << m.disorder << ", region " << m.disorder_region << ")\n";
+      s << "beams: " << m.beams() << " ("
+        << (n > 0 ? 2.0 * static_cast<double>(m.beams()) / static_cast<double>(n) : 0.0) << " per cell)\n";
+      s << "total area: " << total_area << " m^2, mean area: " << total_area / static_cast<double>(n) << " m^2\n";
+      s << "beams per cell: " << histogram_line(r.neighbour_count, n) << "\n";
+      r.summary = s.str();
+    }();
+  }
+  return r;
+}
+
+// Tolerance: bond lengths equal the node distances within 1e-9 of the spacing (or of the bond length
+// when the spacing is not set); positions are computed directly, so the round-off is ~1e-16.
+MeshReport check_node_mesh(const NodeMesh& m) {
+  MeshReport r;
+  {
+    Failures fail(r.failures);  // its destructor appends the counts of failures not shown
+    [&] {
+      const std::size_t n = m.nodes();
+      if (n < 2) fail.add("nodes", "need at least 2, have " + std::to_string(n));
+      if (m.nx > 0 && m.ny > 0 && m.nx * m.ny != static_cast<std::int64_t>(n)) {
+        fail.add("nodes", std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx * m.ny));
+      }
+      if (m.bond_length.size() != m.bonds() || m.intact.size() != m.bonds()) {
+        fail.add("arrays", "bond_length/intact sizes differ from the number of bonds");
+        return;
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!std::isfinite(m.position[k].x()) || !std::isfinite(m.position[k].y())) {
+          fail.add("finite", "node " + std::to_string(k) + " has a non-finite coordinate");
+        }
+      }
+      std::vector<int> degree(n, 0);
+      std::int64_t intact = 0;
+      for (std::size_t e = 0; e < m.bonds(); ++e) {
+        const auto [a, b] = m.bond[e];
+        auto id = [&] {
+          return std::string("bond " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
+        };
+        if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
+          fail.add("bond index", id() + " out of range");
+          continue;
+        }
+        if (a >= b) fail.add("bond order", id() + ": need node_a < node_b");
+        if (e > 0 && !(m.bond[e - 1] < m.bond[e])) {
+          fail.add(m.bond[e - 1] == m.bond[e] ? "bond duplicate" : "bond order",
+                   id() + " follows " + std::to_string(m.bond[e - 1][0]) + ", " + std::to_string(m.bond[e - 1][1]));
+        }
+        const double dist = (m.position[static_cast<std::size_t>(b)] - m.position[static_cast<std::size_t>(a)]).norm();
+        const double scale = m.spacing > 0.0 ? m.spacing : m.bond_length[e];
+        if (!(std::abs(m.bond_length[e] - dist) <= 1e-9 * scale)) {
+          fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m, nodes " + fmt(dist) + " m apart");
+        }
+        if (m.intact[e] > 1) fail.add("intact", id() + ": intact must be 0 or 1");
+        if (m.intact[e] == 1) {
+          ++intact;
+          ++degree[static_cast<std::size_t>(a)];
+          ++degree[static_cast<std::size_t>(b)];
+        }
+      }
+      for (const int d : degree) ++r.neighbour_count[d];
+
+      std::ostringstream s;
+      s.precision(6);
+      s << "nodes: " << n << " (" << m.nx << " x " << m.ny << ")\n";
+      s << "bonds: " << m.bonds() << " (intact " << intact << ", cut " << static_cast<std::int64_t>(m.bonds()) - intact
+        << ")\n";
+      s << "spacing: " << m.spacing << " m, close-packed rows along " << m.rows_along << "\n";
+      if (m.notch_length > 0.0) {
+        s << "notch: " << m.notch_length << " m from the left edge along y = " << m.notch_y << " m\n";
+      } else {
+        s << "notch: none\n";
+      }
+      s << "intact bonds per node: " << histogram_line(r.neighbour_count, n) << "\n";
+      r.summary = s.str();
+    }();
+  }
+  return r;
+}
+
+}  // namespace frac::mesh
