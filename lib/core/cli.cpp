@@ -1,5 +1,6 @@
 #include "core/cli.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -50,6 +51,28 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
     throw UsageError(e.what());
   }
   return vm;
+}
+
+std::vector<const char*> split_overrides(int argc, const char* const* argv,
+                                         std::vector<std::pair<std::string, std::string>>& overrides) {
+  std::vector<const char*> rest;
+  for (int k = 0; k < argc; ++k) {
+    const std::string arg = argv[k];
+    const bool dotted = k > 0 && arg.rfind("--", 0) == 0 && arg.find('.') != std::string::npos &&
+                        arg.find('.') < arg.find('=') && std::isalpha(static_cast<unsigned char>(arg[2]));
+    if (!dotted) {
+      rest.push_back(argv[k]);
+      continue;
+    }
+    const auto eq = arg.find('=');
+    if (eq != std::string::npos) {
+      overrides.emplace_back(arg.substr(2, eq - 2), arg.substr(eq + 1));
+    } else {
+      if (k + 1 >= argc) throw UsageError(arg + ": needs a value");
+      overrides.emplace_back(arg.substr(2), argv[++k]);
+    }
+  }
+  return rest;
 }
 
 int run_tool(const std::string& tool, const std::function<int()>& body) {

@@ -44,6 +44,12 @@ struct Exit {
 po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec, po::options_description& desc,
                         const po::positional_options_description& positional = {});
 
+// Splits scene overrides out of argv: every "--section.key VALUE" or "--section.key=VALUE" (a dotted
+// option name) goes to `overrides` as {"section.key", "VALUE"}; the rest stays in the returned argv
+// (argv[0] first) for parse(). UsageError for a dotted option without a value.
+std::vector<const char*> split_overrides(int argc, const char* const* argv,
+                                         std::vector<std::pair<std::string, std::string>>& overrides);
+
 // Runs a tool body and maps exceptions to exit codes; flushes stdout before printing errors.
 int run_tool(const std::string& tool, const std::function<int()>& body);
 

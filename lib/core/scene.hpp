@@ -1,0 +1,51 @@
+#pragma once
+// A scene file: INI sections ([material], [physics], [loading], [integrator], [stop], [output], ...)
+// of "key = value" lines, read with Boost.Program_options, plus command-line overrides
+// ("--material.beam_modulus 1e9"). Values are read through typed getters that record what was
+// resolved (defaults included) for the run's /parameters; keys the model never read are refused at
+// the end (a typo in a scene never passes silently). Keys are "section.key".
+#include <map>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace frac {
+
+class Scene {
+ public:
+  Scene() = default;
+  // InputError naming the file (and line, where Boost tells it) for an unreadable or malformed file.
+  static Scene load(const std::string& path);
+  static Scene parse(const std::string& text, const std::string& name);
+  // Command-line overrides win over the file.
+  void set(const std::string& key, const std::string& value);
+
+  bool has(std::string_view key) const;
+  // Getters: the value, or the default when the key is absent; UsageError naming the key and the
+  // scene when the value does not parse or is out of range.
+  double number(std::string_view key, double fallback);
+  double number(std::string_view key);  // required
+  double positive(std::string_view key, double fallback);     // > 0
+  double non_negative(std::string_view key, double fallback);  // >= 0
+  long long integer(std::string_view key, long long fallback);
+  bool flag(std::string_view key, bool fallback);  // on|off|true|false|yes|no|1|0
+  std::string text(std::string_view key, const std::string& fallback);
+  // One of `choices`.
+  std::string choice(std::string_view key, const std::string& fallback, const std::vector<std::string>& choices);
+
+  // Every key read so far with its resolved value (text), sorted.
+  std::vector<std::pair<std::string, std::string>> resolved() const;
+  // UsageError naming every key of the file or the overrides that nothing read.
+  void check_all_used() const;
+  const std::string& name() const { return name_; }
+
+ private:
+  const std::string* find(std::string_view key);
+  [[noreturn]] void bad(std::string_view key, const std::string& value, const std::string& why) const;
+  std::string name_ = "scene";
+  std::map<std::string, std::string, std::less<>> values_;
+  std::map<std::string, std::string, std::less<>> resolved_;
+};
+
+}  // namespace frac

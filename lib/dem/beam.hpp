@@ -1,0 +1,84 @@
+#pragma once
+// The beam between two cell centroids (physics/polygon-dem.md §4, Herrmann-Hansen-Roux 1989):
+// Timoshenko stiffnesses α, β, δ from the initial geometry, evaluated in the co-rotational frame of
+// the current beam axis, so that a rigid motion of a bonded pair makes no force; and the breaking
+// rule of §5. One beam at a time here; beams.hpp runs the loops.
+#include <cmath>
+#include <numbers>
+
+namespace frac::dem {
+
+struct BeamStiffness {
+  double alpha;  // axial, N/m: E S h / l0
+  double beta;   // shear, N/m: 1/(b + c/12)
+  double delta;  // bending, N/m: β (b/c + 1/3); moments are δ l0² Θ
+};
+
+// a = l0/(E S h), b = shear_ratio·a (the paper: b = 2a), c = l0³/(E I), I = h S³/12.
+inline BeamStiffness beam_stiffness(double l0, double section, double thickness, double young, double shear_ratio) {
+  const double a = l0 / (young * section * thickness);
+  const double b = shear_ratio * a;
+  const double c = l0 * l0 * l0 / (young * thickness * section * section * section / 12.0);
+  const double beta = 1.0 / (b + c / 12.0);
+  return {1.0 / a, beta, beta * (b / c + 1.0 / 3.0)};
+}
+
+// Wraps an angle into (−π, π].
+inline double wrap_angle(double x) {
+  constexpr double two_pi = 2 * std::numbers::pi;
+  if (x > -std::numbers::pi && x <= std::numbers::pi) return x;
+  x = std::remainder(x, two_pi);
+  return x <= -std::numbers::pi ? x + two_pi : x;
+}
+
+// The state of one beam and the forces it makes. Inputs: centroid separation d = c_j − c_i, the unit
+// initial axis e0, the cells' accumulated angles (0 in the reference state).
+struct BeamResponse {
+  double length;      // l, m
+  double strain;      // ε = (l − l0)/l0
+  double theta_i, theta_j;  // end rotations relative to the current axis, rad
+  double fx, fy;      // force on i, N (j receives −F)
+  double torque_i, torque_j;  // N m
+  double energy;      // elastic energy, J
+};
+
+inline BeamResponse beam_response(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j,
+                                  double l0, const BeamStiffness& k) {
+  BeamResponse r;
+  const double l = std::sqrt(dx * dx + dy * dy);
+  const double inv_l = 1.0 / l;
+  const double ex = dx * inv_l, ey = dy * inv_l;
+  // Rotation of the axis since the reference state, as a wrapped difference (never raw atan2 values).
+  const double dpsi = std::atan2(e0x * ey - e0y * ex, e0x * ex + e0y * ey);
+  const double ti = wrap_angle(phi_i - dpsi);
+  const double tj = wrap_angle(phi_j - dpsi);
+  const double l02 = l0 * l0;
+  const double mi = -(k.beta * l02 / 2) * tj + k.delta * l02 * (tj - ti);
+  const double mj = -(k.beta * l02 / 2) * ti + k.delta * l02 * (ti - tj);
+  const double q = (mi + mj) * inv_l;  // shear force along t = ẑ × e, from the moment balance
+  const double stretch = l - l0;
+  const double fa = k.alpha * stretch;
+  r.length = l;
+  r.strain = stretch / l0;
+  r.theta_i = ti;
+  r.theta_j = tj;
+  r.fx = fa * ex - q * ey;
+  r.fy = fa * ey + q * ex;
+  r.torque_i = mi;
+  r.torque_j = mj;
+  r.energy = 0.5 * k.alpha * stretch * stretch +
+             l02 * (0.5 * k.delta * (ti * ti + tj * tj) + (0.5 * k.beta - k.delta) * ti * tj);
+  return r;
+}
+
+// Breaking rule, paper eq. 13: only a stretched beam breaks, when (ε/t_ε)² + max(|Θ_i|,|Θ_j|)/t_Θ ≥ 1.
+// Returns 0 (holds), 1 (breaks, the stretching term dominates) or 2 (breaks, bending dominates).
+inline int breaking_mode(double strain, double theta_i, double theta_j, double t_eps, double t_theta) {
+  if (!(strain > 0)) return 0;
+  const double s = (strain / t_eps) * (strain / t_eps);
+  const double b = std::max(std::abs(theta_i), std::abs(theta_j)) / t_theta;
+  if (s + b < 1) return 0;
+  return s >= b ? 1 : 2;
+}
+
+}  // namespace frac::dem

@@ -1,0 +1,58 @@
+#pragma once
+// All beams of a sample: per-beam data in arrays, the intact ones compacted into an active list (a
+// broken beam is never tested again), the force loop, the energy, and the breaking pass.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dem/beam.hpp"
+#include "dem/bodies.hpp"
+#include "mesh/cell_mesh.hpp"
+
+namespace frac::dem {
+
+struct BeamBreak {
+  std::int64_t beam;
+  int mode;        // 1 stretching, 2 bending
+  double energy;   // elastic energy it held, J
+};
+
+class Beams {
+ public:
+  Beams() = default;
+  Beams(const mesh::CellMesh& mesh, const Material& material);
+
+  std::size_t size() const { return i_.size(); }
+  std::size_t intact_count() const { return active_.size(); }
+  std::span<const std::uint8_t> intact() const { return intact_; }
+  std::span<const std::int32_t> active() const { return active_; }
+  std::int32_t cell_i(std::size_t b) const { return i_[b]; }
+  std::int32_t cell_j(std::size_t b) const { return j_[b]; }
+  const BeamStiffness& stiffness(std::size_t b) const { return k_[b]; }
+  double rest_length(std::size_t b) const { return l0_[b]; }
+
+  // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque) and returns
+  // the power they deliver at velocities v (W) into *power if given.
+  void add_forces(std::span<const double> q, std::span<double> f) const;
+  // Elastic energy of the intact beams at q, J.
+  double energy(std::span<const double> q) const;
+  // Strain of every beam at q (broken beams too, for pictures).
+  void strains(std::span<const double> q, std::span<double> out) const;
+  // Breaks, for good, every intact beam that satisfies the rule at q; appends them to `broken`.
+  void break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken);
+  // Breaks one beam (tests, and a scene's explicit cut).
+  void remove(std::size_t b);
+  // Marks every beam broken (a scene without beams: no cohesion, every cell its own fragment).
+  void remove_all();
+
+ private:
+  BeamResponse response(std::size_t b, std::span<const double> q) const;
+  std::size_t n_ = 0;  // cells
+  std::vector<std::int32_t> i_, j_;
+  std::vector<double> l0_, e0x_, e0y_;
+  std::vector<BeamStiffness> k_;
+  std::vector<std::uint8_t> intact_;
+  std::vector<std::int32_t> active_;
+};
+
+}  // namespace frac::dem

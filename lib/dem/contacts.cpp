@@ -1,0 +1,203 @@
+#include "dem/contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/overlap.hpp"
+
+namespace frac::dem {
+
+void ContactList::clear() {
+  i.clear();
+  j.clear();
+  rx.clear();
+  ry.clear();
+  nx.clear();
+  ny.clear();
+  area.clear();
+  inv_lc.clear();
+  fn.clear();
+  candidate_pairs = enclosed = multi_crossing = 0;
+}
+
+ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
+    : mesh_(&mesh), bodies_(&bodies), world_(mesh.vertex.size()), cell_of_(bodies.n), sorted_(bodies.n) {}
+
+void ContactSearch::world_vertices(std::span<const double> q) {
+  const std::size_t n = bodies_->n;
+  const double* x = q.data();
+  const double* y = x + n;
+  const double* phi = y + n;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double c = std::cos(phi[k]), s = std::sin(phi[k]);
+    const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
+    const auto e = static_cast<std::size_t>(mesh_->vertex_offset[k + 1]);
+    for (std::size_t v = b; v < e; ++v) {
+      const Vec2& p = mesh_->vertex[v];
+      world_[v] = Vec2(x[k] + c * p.x() - s * p.y(), y[k] + s * p.x() + c * p.y());
+    }
+  }
+}
+
+void ContactSearch::find(std::span<const double> q, ContactList& out) {
+  out.clear();
+  const std::size_t n = bodies_->n;
+  if (n < 2) return;
+  world_vertices(q);
+  const double* x = q.data();
+  const double* y = x + n;
+  // Cell list: grid cells of side 2·max bounding radius, so every overlapping pair sits in the same or
+  // adjacent grid cells. Counting sort into the grid (deterministic order: by grid cell, then index).
+  double xmin = x[0], xmax = x[0], ymin = y[0], ymax = y[0];
+  for (std::size_t k = 1; k < n; ++k) {
+    xmin = std::min(xmin, x[k]);
+    xmax = std::max(xmax, x[k]);
+    ymin = std::min(ymin, y[k]);
+    ymax = std::max(ymax, y[k]);
+  }
+  const double side = 2 * bodies_->max_bound_radius;
+  // Bound the grid size (fragments flying far apart): at most ~4 grid cells per body.
+  const double span_x = xmax - xmin, span_y = ymax - ymin;
+  double cell = side;
+  while ((span_x / cell + 1) * (span_y / cell + 1) > 4.0 * static_cast<double>(n) + 16) cell *= 2;
+  const auto gx = static_cast<std::size_t>(span_x / cell) + 1;
+  const auto gy = static_cast<std::size_t>(span_y / cell) + 1;
+  cell_start_.assign(gx * gy + 1, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto cx = std::min(gx - 1, static_cast<std::size_t>((x[k] - xmin) / cell));
+    const auto cy = std::min(gy - 1, static_cast<std::size_t>((y[k] - ymin) / cell));
+    cell_of_[k] = static_cast<std::int32_t>(cy * gx + cx);
+    ++cell_start_[static_cast<std::size_t>(cell_of_[k]) + 1];
+  }
+  for (std::size_t c = 0; c < gx * gy; ++c) cell_start_[c + 1] += cell_start_[c];
+  {
+    // Fill using a running cursor per grid cell (reuse the start array shifted by one).
+    std::vector<std::int32_t>& start = cell_start_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto c = static_cast<std::size_t>(cell_of_[k]);
+      sorted_[static_cast<std::size_t>(start[c]++)] = static_cast<std::int32_t>(k);
+    }
+    for (std::size_t c = gx * gy; c > 0; --c) start[c] = start[c - 1];
+    start[0] = 0;
+  }
+  const auto& r = bodies_->bound_radius;
+  const auto& d = bodies_->diameter;
+  const double g = bodies_->length_scale;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto ci = static_cast<std::size_t>(cell_of_[i]);
+    const std::size_t cx = ci % gx, cy = ci / gx;
+    for (std::size_t ny = (cy > 0 ? cy - 1 : 0); ny <= std::min(gy - 1, cy + 1); ++ny) {
+      for (std::size_t nxc = (cx > 0 ? cx - 1 : 0); nxc <= std::min(gx - 1, cx + 1); ++nxc) {
+        const std::size_t c = ny * gx + nxc;
+        for (auto s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
+          const auto j = static_cast<std::size_t>(sorted_[static_cast<std::size_t>(s)]);
+          if (j <= i) continue;
+          const double dx = x[j] - x[i], dy = y[j] - y[i];
+          const double reach = r[i] + r[j];
+          if (dx * dx + dy * dy >= reach * reach) continue;
+          ++out.candidate_pairs;
+          const auto pi = std::span<const Vec2>(world_.data() + mesh_->vertex_offset[i],
+                                                static_cast<std::size_t>(mesh_->vertex_offset[i + 1] - mesh_->vertex_offset[i]));
+          const auto pj = std::span<const Vec2>(world_.data() + mesh_->vertex_offset[j],
+                                                static_cast<std::size_t>(mesh_->vertex_offset[j + 1] - mesh_->vertex_offset[j]));
+          const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), g);
+          if (geo.kind == geometry::ContactGeometry::Kind::none) continue;
+          if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
+          if (geo.distinct_crossings > 2) ++out.multi_crossing;
+          out.i.push_back(static_cast<std::int32_t>(i));
+          out.j.push_back(static_cast<std::int32_t>(j));
+          out.rx.push_back(geo.point.x());
+          out.ry.push_back(geo.point.y());
+          out.nx.push_back(geo.normal.x());
+          out.ny.push_back(geo.normal.y());
+          out.area.push_back(geo.area);
+          out.inv_lc.push_back(0.5 * (1.0 / d[i] + 1.0 / d[j]));
+          out.fn.push_back(0.0);
+        }
+      }
+    }
+  }
+}
+
+namespace {
+// Applies force (fx, fy) on i at R and its opposite on j; returns the power delivered, F·(v_i(R) − v_j(R)).
+inline double apply_pair(std::size_t n, std::span<const double> q, std::span<const double> v, std::span<double> f,
+                         std::size_t i, std::size_t j, double rx, double ry, double fx, double fy) {
+  const double* x = q.data();
+  const double* y = x + n;
+  double* fxa = f.data();
+  double* fya = fxa + n;
+  double* tz = fya + n;
+  const double rix = rx - x[i], riy = ry - y[i], rjx = rx - x[j], rjy = ry - y[j];
+  fxa[i] += fx;
+  fya[i] += fy;
+  fxa[j] -= fx;
+  fya[j] -= fy;
+  tz[i] += rix * fy - riy * fx;
+  tz[j] -= rjx * fy - rjy * fx;
+  const double* vx = v.data();
+  const double* vy = vx + n;
+  const double* w = vy + n;
+  const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
+  const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
+  return fx * (vix - vjx) + fy * (viy - vjy);
+}
+
+// Relative velocity of j with respect to i at R, v_rel = v_j + ω_j ẑ×(R−c_j) − v_i − ω_i ẑ×(R−c_i).
+inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::span<const double> v, std::size_t i,
+                              std::size_t j, double rx, double ry) {
+  const double* x = q.data();
+  const double* y = x + n;
+  const double* vx = v.data();
+  const double* vy = vx + n;
+  const double* w = vy + n;
+  const double vix = vx[i] - w[i] * (ry - y[i]), viy = vy[i] + w[i] * (rx - x[i]);
+  const double vjx = vx[j] - w[j] * (ry - y[j]), vjy = vy[j] + w[j] * (rx - x[j]);
+  return {vjx - vix, vjy - viy};
+}
+}  // namespace
+
+double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
+                       std::span<const double> v, std::span<double> f) {
+  const double yh = p.grain_modulus * p.thickness;
+  double power = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const double fn = -yh * c.area[k] * c.inv_lc[k];
+    c.fn[k] = fn;
+    power += apply_pair(bodies.n, q, v, f, static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k]), c.rx[k],
+                        c.ry[k], fn * c.nx[k], fn * c.ny[k]);
+  }
+  return power;
+}
+
+double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
+                       std::span<const double> v, std::span<double> f) {
+  double power = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
+    const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
+    const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
+    const double fd = m_eff * p.gamma_n * vn;
+    c.fn[k] += fd;
+    power += apply_pair(bodies.n, q, v, f, i, j, c.rx[k], c.ry[k], fd * c.nx[k], fd * c.ny[k]);
+  }
+  return power;
+}
+
+double contact_friction(const ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                        std::span<const double> q, std::span<const double> v, std::span<double> f) {
+  double power = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
+    const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
+    const double vt = vr.x() * tx + vr.y() * ty;
+    const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
+    const double ft = std::copysign(std::min(m_eff * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
+    power += apply_pair(bodies.n, q, v, f, i, j, c.rx[k], c.ry[k], ft * tx, ft * ty);
+  }
+  return power;
+}
+
+}  // namespace frac::dem

@@ -1,0 +1,67 @@
+#pragma once
+// Contacts between cells (physics/polygon-dem.md §3): neighbour search on a cell list with cells of
+// the largest polygon diameter, pairs culled by bounding circles before any clipping, the overlap
+// geometry of each candidate pair (geometry/overlap), and the three contact force terms, each a
+// separate loop over the contact list that the engine calls only when the scene turns it on:
+//   contact_elastic   F_n = −Y·A·h/L_c along n, at the contact line's midpoint R
+//   contact_damping   + m_eff·γ_N·v_n along n (v_n < 0 while approaching)
+//   contact_friction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
+// Every pair force is equal and opposite and acts at one point, so momentum and angular momentum are
+// conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dem/bodies.hpp"
+#include "geometry/vec2.hpp"
+
+namespace frac::dem {
+
+using geometry::Vec2;
+
+struct ContactList {
+  std::vector<std::int32_t> i, j;
+  std::vector<double> rx, ry;   // application point R, m
+  std::vector<double> nx, ny;   // unit normal from i to j
+  std::vector<double> area;     // overlap area, m^2
+  std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
+  std::vector<double> fn;       // normal force on i along n (elastic + damping), N; negative = repulsive
+  std::size_t size() const { return i.size(); }
+  void clear();
+  // Diagnostics of the last search.
+  std::int64_t candidate_pairs = 0;  // pairs whose bounding circles overlap
+  std::int64_t enclosed = 0;         // overlaps without a contact line (one polygon inside another)
+  std::int64_t multi_crossing = 0;   // more than 2 crossings (a corner poked through)
+};
+
+class ContactSearch {
+ public:
+  ContactSearch() = default;
+  ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies);
+  // Finds every overlapping pair at state q and fills `out` (cleared first).
+  void find(std::span<const double> q, ContactList& out);
+
+ private:
+  void world_vertices(std::span<const double> q);
+  const mesh::CellMesh* mesh_ = nullptr;
+  const Bodies* bodies_ = nullptr;
+  std::vector<Vec2> world_;               // vertices of every cell in world coordinates
+  std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
+  std::vector<std::int32_t> cell_of_;
+  std::vector<std::int32_t> sorted_;
+};
+
+struct ContactParameters {
+  double grain_modulus, thickness, gamma_n, gamma_t, friction;
+};
+
+// The force terms. q, v: state and velocities (flat layout of bodies.hpp); f: forces accumulated in
+// the same layout. Each returns the power delivered to the bodies, W.
+double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
+                       std::span<const double> v, std::span<double> f);
+double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
+                       std::span<const double> v, std::span<double> f);
+double contact_friction(const ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                        std::span<const double> q, std::span<const double> v, std::span<double> f);
+
+}  // namespace frac::dem

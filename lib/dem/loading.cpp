@@ -1,0 +1,174 @@
+#include "dem/loading.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "geometry/polygon.hpp"
+
+namespace frac::dem {
+namespace {
+
+double mean(const std::vector<std::size_t>& cells, const double* coord) {
+  double s = 0;
+  for (std::size_t k : cells) s += coord[k];
+  return cells.empty() ? 0.0 : s / static_cast<double>(cells.size());
+}
+
+// Distance from point p to the boundary of polygon poly (world coordinates).
+double distance_to_boundary(const Vec2& p, const std::vector<Vec2>& poly) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < poly.size(); ++a) {
+    const Vec2& u = poly[a];
+    const Vec2& w = poly[(a + 1) % poly.size()];
+    const Vec2 e = w - u;
+    const double t = std::clamp((p - u).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (u + t * e - p).norm());
+  }
+  return best;
+}
+
+// The explosion / pulse kick: every side of the explosive polygon is shared with one neighbour k,
+// which gets v_k = C·S_k/m_k·n_k along the side's outward normal, C = sqrt(2 E0 / Σ S_k²/m_k):
+// Σ ½ m v² = E0 and Σ m v = C Σ S_k n_k = 0 exactly (the sides of a closed polygon sum to zero).
+LoadingSetup explosion_kick(const Loading& loading, const mesh::CellMesh& mesh, const Bodies& bodies,
+                            std::span<double> v0) {
+  LoadingSetup setup;
+  const std::size_t n = mesh.cells();
+  const Vec2 centre(0.5 * (mesh.bounds[0] + mesh.bounds[2]), 0.5 * (mesh.bounds[1] + mesh.bounds[3]));
+  std::size_t src = 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if ((mesh.centroid[k] - centre).squaredNorm() < (mesh.centroid[src] - centre).squaredNorm()) src = k;
+  setup.source = src;
+  const auto poly = mesh.world_polygon(src);
+  const double g = bodies.length_scale;
+  struct Side {
+    std::size_t cell;
+    double s;
+    Vec2 normal;
+  };
+  std::vector<Side> sides;
+  for (std::size_t a = 0; a < poly.size(); ++a) {
+    const Vec2 e = poly[(a + 1) % poly.size()] - poly[a];
+    const Vec2 mid = poly[a] + 0.5 * e;
+    const double len = e.norm();
+    if (len <= 1e-12 * g) continue;
+    const Vec2 normal(e.y() / len, -e.x() / len);  // outward for a counter-clockwise polygon
+    std::size_t owner = n;
+    double best = 1e-6 * g;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k == src || (mesh.centroid[k] - mid).norm() > 4 * g + 2 * bodies.max_bound_radius) continue;
+      const double dist = distance_to_boundary(mid, mesh.world_polygon(k));
+      if (dist < best) {
+        best = dist;
+        owner = k;
+      }
+    }
+    if (owner == n)
+      throw InputError("loading.kind = " + loading.name + ": the explosive cell " + std::to_string(src) +
+                       " has a side on the sample's boundary; it must be an interior cell");
+    sides.push_back({owner, len, normal});
+  }
+  double denom = 0;
+  for (const auto& s : sides) denom += s.s * s.s / bodies.mass[s.cell];
+  const double c = std::sqrt(2 * loading.energy / denom);
+  for (const auto& s : sides) {
+    const double speed = c * s.s / bodies.mass[s.cell];
+    v0[s.cell] += speed * s.normal.x();
+    v0[n + s.cell] += speed * s.normal.y();
+    setup.kicked.push_back(s.cell);
+  }
+  setup.kinetic_energy = loading.energy;
+  return setup;
+}
+
+}  // namespace
+
+double LoadingProbe::stress(std::span<const double> force, std::size_t n) const {
+  double ft = 0, fb = 0;
+  for (std::size_t k : top) ft += force[n + k];
+  for (std::size_t k : bottom) fb += force[n + k];
+  return (fb - ft) / (2 * width0 * thickness);
+}
+
+double LoadingProbe::axial_strain(std::span<const double> q, std::size_t n) const {
+  const double* y = q.data() + n;
+  return (mean(top, y) - mean(bottom, y)) / length0 - 1.0;
+}
+
+double LoadingProbe::lateral_strain(std::span<const double> q, std::size_t n) const {
+  (void)n;
+  const double* x = q.data();
+  return (mean(right, x) - mean(left, x)) / width0 - 1.0;
+}
+
+LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, Model& model, std::span<double> v0) {
+  LoadingSetup setup;
+  const std::size_t n = mesh.cells();
+  const Bodies& bodies = model.bodies();
+  const double g = bodies.length_scale;
+  const double depth = loading.layer_depth > 0 ? loading.layer_depth : g;
+  const auto& b = mesh.bounds;
+  switch (loading.kind) {
+    case LoadingKind::none: break;
+    case LoadingKind::uniaxial:
+    case LoadingKind::confined_compression: {
+      LoadingProbe& p = setup.probe;
+      p.active = true;
+      p.thickness = model.material().thickness;
+      for (std::size_t k = 0; k < n; ++k) {
+        const Vec2& c = mesh.centroid[k];
+        if (c.y() > b[3] - depth) p.top.push_back(k);
+        else if (c.y() < b[1] + depth) p.bottom.push_back(k);
+        if (c.x() > b[2] - depth) p.right.push_back(k);
+        if (c.x() < b[0] + depth) p.left.push_back(k);
+      }
+      if (p.top.empty() || p.bottom.empty() || p.left.empty() || p.right.empty())
+        throw InputError("loading.kind = " + loading.name + ": the mesh has no boundary layer within " +
+                         std::to_string(depth) + " m of an edge");
+      const double* y0 = nullptr;
+      std::vector<double> cx(n), cy(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        cx[k] = mesh.centroid[k].x();
+        cy[k] = mesh.centroid[k].y();
+      }
+      y0 = cy.data();
+      p.length0 = mean(p.top, y0) - mean(p.bottom, y0);
+      p.width0 = mean(p.right, cx.data()) - mean(p.left, cx.data());
+      const double sign = loading.tension ? 1.0 : -1.0;
+      const int up = model.add_layer({sign * loading.boundary_speed, loading.ramp});
+      const int down = model.add_layer({-sign * loading.boundary_speed, loading.ramp});
+      const int fixed = model.add_layer({0.0, loading.ramp});
+      const bool confined = loading.kind == LoadingKind::confined_compression;
+      for (auto [cells, layer] : {std::pair{&p.top, up}, std::pair{&p.bottom, down}}) {
+        for (std::size_t k : *cells) {
+          model.add_prescribed(n + k, cy[k], layer);
+          if (confined) {
+            model.add_prescribed(k, cx[k], fixed);
+            model.add_prescribed(2 * n + k, 0.0, fixed);
+          }
+        }
+      }
+      break;
+    }
+    case LoadingKind::explosion:
+    case LoadingKind::pulse: setup = explosion_kick(loading, mesh, bodies, v0); break;
+    case LoadingKind::impact: {
+      const double xc = 0.5 * (b[0] + b[2]);
+      std::size_t src = n;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (mesh.centroid[k].y() >= b[1] + depth) continue;
+        if (src == n || std::abs(mesh.centroid[k].x() - xc) < std::abs(mesh.centroid[src].x() - xc)) src = k;
+      }
+      if (src == n) throw InputError("loading.kind = impact: no cell within " + std::to_string(depth) + " m of the bottom edge");
+      setup.source = src;
+      setup.kicked.push_back(src);
+      v0[n + src] = loading.impact_speed;
+      setup.kinetic_energy = 0.5 * bodies.mass[src] * loading.impact_speed * loading.impact_speed;
+      break;
+    }
+  }
+  return setup;
+}
+
+}  // namespace frac::dem

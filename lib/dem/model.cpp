@@ -1,0 +1,123 @@
+#include "dem/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace frac::dem {
+
+std::string_view term_name(Term t) {
+  switch (t) {
+    case Term::beams: return "beams";
+    case Term::contact_elastic: return "contact";
+    case Term::contact_damping: return "damping";
+    case Term::contact_friction: return "friction";
+    default: return "?";
+  }
+}
+
+double LayerMotion::displacement(double t) const {
+  if (speed == 0) return 0;
+  if (t < ramp) return 0.5 * speed / ramp * t * t;
+  return 0.5 * speed * ramp + speed * (t - ramp);
+}
+double LayerMotion::velocity(double t) const {
+  if (speed == 0) return 0;
+  return t < ramp ? speed * t / ramp : speed;
+}
+double LayerMotion::acceleration(double t) const {
+  if (speed == 0) return 0;
+  return t < ramp ? speed / ramp : 0;
+}
+
+Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics)
+    : bodies_(make_bodies(mesh, material)),
+      material_(material),
+      physics_(physics),
+      contact_parameters_{material.grain_modulus, material.thickness, material.gamma_n, material.gamma_t,
+                          material.friction} {
+  if (physics.beams) {
+    beams_ = Beams(mesh, material);
+    terms_.push_back(Term::beams);
+  }
+  if (physics.contacts) {
+    search_ = ContactSearch(mesh, bodies_);
+    terms_.push_back(Term::contact_elastic);
+    if (physics.damping) terms_.push_back(Term::contact_damping);
+    if (physics.friction) terms_.push_back(Term::contact_friction);
+  }
+  force_.assign(size(), 0.0);
+  inv_mass_.resize(size());
+  for (std::size_t k = 0; k < bodies_.n; ++k) {
+    inv_mass_[k] = inv_mass_[bodies_.n + k] = 1.0 / bodies_.mass[k];
+    inv_mass_[2 * bodies_.n + k] = 1.0 / bodies_.inertia[k];
+  }
+}
+
+void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
+  std::fill(force_.begin(), force_.end(), 0.0);
+  power_.fill(0.0);
+  const bool contact_list = physics_.contacts;
+  if (contact_list) search_.find(q, contacts_);
+  for (const Term term : terms_) {
+    const auto k = static_cast<std::size_t>(term);
+    ++calls_[k];
+    switch (term) {
+      case Term::beams: beams_.add_forces(q, force_); break;
+      case Term::contact_elastic: power_[k] = contact_elastic(contacts_, contact_parameters_, bodies_, q, v, force_); break;
+      case Term::contact_damping: power_[k] = contact_damping(contacts_, contact_parameters_, bodies_, q, v, force_); break;
+      case Term::contact_friction: power_[k] = contact_friction(contacts_, contact_parameters_, bodies_, q, v, force_); break;
+      default: break;
+    }
+    if (non_finite_term_ == Term::count) {
+      double check = 0;
+      for (double x : force_) check += x * 0.0;  // NaN or ±inf make it NaN
+      if (check != 0.0) {
+        non_finite_term_ = term;
+        for (std::size_t i = 0; i < force_.size(); ++i)
+          if (!std::isfinite(force_[i])) {
+            non_finite_index_ = i;
+            break;
+          }
+      }
+    }
+  }
+  const std::size_t n = size();
+  for (std::size_t k = 0; k < n; ++k) a[k] = force_[k] * inv_mass_[k];
+  boundary_power_ = 0;
+  for (const Prescribed& p : prescribed_) {
+    const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];
+    const double m_k = 1.0 / inv_mass_[p.index];
+    boundary_power_ += (m_k * m.acceleration(t) - force_[p.index]) * m.velocity(t);
+  }
+}
+
+void Model::prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const {
+  for (const Prescribed& p : prescribed_) {
+    const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];
+    q[p.index] = p.q0 + m.displacement(t);
+    v[p.index] = m.velocity(t);
+    a[p.index] = m.acceleration(t);
+  }
+}
+
+int Model::add_layer(const LayerMotion& motion) {
+  layers_.push_back(motion);
+  return static_cast<int>(layers_.size()) - 1;
+}
+
+void Model::add_prescribed(std::size_t index, double q0, int layer) {
+  prescribed_.push_back({index, q0, layer});
+  prescribed_index_.push_back(index);
+}
+
+std::array<double, 2> Model::kinetic_energy(std::span<const double> v) const {
+  const std::size_t n = bodies_.n;
+  double et = 0, er = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    et += 0.5 * bodies_.mass[k] * (v[k] * v[k] + v[n + k] * v[n + k]);
+    er += 0.5 * bodies_.inertia[k] * v[2 * n + k] * v[2 * n + k];
+  }
+  return {et, er};
+}
+
+}  // namespace frac::dem

@@ -1,0 +1,99 @@
+#pragma once
+// The polygon DEM as a dynamics::System: the force terms a scene names, composed into a list at
+// construction (a term that is off is not in the list: it is never called and costs nothing), the
+// prescribed boundary coordinates of the loading, and the energy ledger (the power of every
+// non-conservative term, integrated over time).
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "dem/beams.hpp"
+#include "dem/bodies.hpp"
+#include "dem/contacts.hpp"
+#include "dem/material.hpp"
+#include "dynamics/integrator.hpp"
+
+namespace frac::dem {
+
+enum class Term : int { beams = 0, contact_elastic, contact_damping, contact_friction, count };
+std::string_view term_name(Term t);
+
+// A prescribed coordinate: index into q, and its trajectory q(t) = q0 + s(t), with s, ṡ, s̈ from the
+// loading protocol (shared by every coordinate of one boundary layer through `layer`).
+struct Prescribed {
+  std::size_t index;
+  double q0;
+  int layer;  // index into Model::layers
+};
+struct LayerMotion {
+  // Displacement s(t) of the layer along its coordinate: constant acceleration from rest for t < ramp,
+  // then constant speed `speed`. speed = 0 holds the coordinate fixed.
+  double speed = 0, ramp = 0;
+  double displacement(double t) const;
+  double velocity(double t) const;
+  double acceleration(double t) const;
+};
+
+class Model final : public dynamics::System {
+ public:
+  Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics);
+
+  // dynamics::System
+  void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  std::span<const std::size_t> prescribed() const override { return prescribed_index_; }
+  void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
+
+  // Loading: prescribe a coordinate to follow `layer`'s motion from its value q0.
+  int add_layer(const LayerMotion& motion);
+  void add_prescribed(std::size_t index, double q0, int layer);
+
+  const Bodies& bodies() const { return bodies_; }
+  Beams& beams() { return beams_; }
+  const Beams& beams() const { return beams_; }
+  const ContactList& contacts() const { return contacts_; }
+  const Material& material() const { return material_; }
+  const Physics& physics() const { return physics_; }
+  std::size_t size() const { return 3 * bodies_.n; }
+
+  // Forces (fx, fy, torque layout) of the last evaluation: the total on every coordinate.
+  std::span<const double> forces() const { return force_; }
+  // Power of each term at the last evaluation (W), and of the boundary (what the prescribed motion
+  // must supply beyond the other forces: Σ (m a − F)·v over the prescribed coordinates).
+  double power(Term t) const { return power_[static_cast<std::size_t>(t)]; }
+  double boundary_power() const { return boundary_power_; }
+  // How often each term ran (tests check that a term that is off never runs).
+  std::int64_t calls(Term t) const { return calls_[static_cast<std::size_t>(t)]; }
+  const std::vector<Term>& terms() const { return terms_; }
+  // The first term whose forces became non-finite at an evaluation (Term::count if none), and the
+  // coordinate index (0..3N) where it happened.
+  Term non_finite_term() const { return non_finite_term_; }
+  std::size_t non_finite_index() const { return non_finite_index_; }
+
+  // Kinetic energies at (q, v): translational, rotational, J.
+  std::array<double, 2> kinetic_energy(std::span<const double> v) const;
+
+ private:
+  Bodies bodies_;
+  Material material_;
+  Physics physics_;
+  Beams beams_;
+  ContactSearch search_;
+  ContactList contacts_;
+  ContactParameters contact_parameters_;
+  std::vector<Term> terms_;
+  std::vector<double> force_;
+  std::array<double, static_cast<std::size_t>(Term::count)> power_{};
+  std::array<std::int64_t, static_cast<std::size_t>(Term::count)> calls_{};
+  double boundary_power_ = 0;
+  Term non_finite_term_ = Term::count;
+  std::size_t non_finite_index_ = 0;
+  std::vector<LayerMotion> layers_;
+  std::vector<Prescribed> prescribed_;
+  std::vector<std::size_t> prescribed_index_;
+  std::vector<double> inv_mass_;  // per coordinate: 1/m, 1/m, 1/I
+};
+
+}  // namespace frac::dem

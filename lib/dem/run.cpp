@@ -1,0 +1,173 @@
+#include "dem/run.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace frac::dem {
+namespace {
+
+// Names the step, the cell and the term of a non-finite value.
+std::string blame_non_finite(const Model& model, const dynamics::Integrator& in, std::int64_t step) {
+  const std::size_t n = model.bodies().n;
+  const char* what[3] = {"x", "y", "angle"};
+  std::ostringstream msg;
+  msg << "non-finite value at step " << step << " (t = " << in.t() << " s)";
+  if (model.non_finite_term() != Term::count) {
+    const std::size_t k = model.non_finite_index();
+    msg << ": the " << term_name(model.non_finite_term()) << " force on cell " << k % n << " (" << what[k / n]
+        << ")";
+  } else {
+    const auto q = in.q();
+    const auto v = in.v();
+    for (std::size_t k = 0; k < q.size(); ++k)
+      if (!std::isfinite(q[k]) || !std::isfinite(v[k])) {
+        msg << ": the state of cell " << k % n << " (" << what[k / n] << ") in the integrator";
+        break;
+      }
+  }
+  msg << "; the time step may be too large for this scene";
+  return msg.str();
+}
+
+bool all_finite(std::span<const double> x) {
+  double s = 0;
+  for (double v : x) s += v * 0.0;  // NaN or ±inf make the product NaN
+  return s == 0.0;
+}
+
+}  // namespace
+
+RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
+                   std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
+                   Progress& progress) {
+  RunSummary summary;
+  summary.dt = dt;
+  const std::size_t n = model.bodies().n;
+  const std::size_t nb = model.beams().size();
+  Ledger ledger;
+  std::vector<BeamBreak> broken;
+  broken.reserve(nb);
+  io::BodyFrame frame;
+  frame.position.resize(2 * n);
+  frame.velocity.resize(2 * n);
+  frame.angle.resize(n);
+  frame.angular_velocity.resize(n);
+  frame.intact.resize(nb);
+  frame.strain.resize(nb);
+
+  integrator.start(model, 0.0, dt, q0, v0);
+  auto write_frame = [&](std::int64_t step) {
+    if (!writer) return;
+    const auto q = integrator.q();
+    const auto v = integrator.v();
+    for (std::size_t k = 0; k < n; ++k) {
+      frame.position[2 * k] = q[k];
+      frame.position[2 * k + 1] = q[n + k];
+      frame.velocity[2 * k] = v[k];
+      frame.velocity[2 * k + 1] = v[n + k];
+      frame.angle[k] = q[2 * n + k];
+      frame.angular_velocity[k] = v[2 * n + k];
+    }
+    const auto intact = model.beams().intact();
+    std::copy(intact.begin(), intact.end(), frame.intact.begin());
+    model.beams().strains(q, frame.strain);
+    frame.step = step;
+    frame.time = integrator.t();
+    writer->write_frame(frame);
+  };
+  double e0 = 0;
+  auto observe = [&](std::int64_t step) {
+    const auto q = integrator.q();
+    const auto v = integrator.v();
+    const auto ke = model.kinetic_energy(v);
+    const double ub = model.physics().beams ? model.beams().energy(q) : 0.0;
+    const double w_contact = -ledger.work[static_cast<std::size_t>(Term::contact_elastic)];
+    const double w_damping = -ledger.work[static_cast<std::size_t>(Term::contact_damping)];
+    const double w_friction = -ledger.work[static_cast<std::size_t>(Term::contact_friction)];
+    const double balance =
+        ke[0] + ke[1] + ub + w_contact + w_damping + w_friction + ledger.broken_energy - ledger.boundary;
+    if (step == 0) e0 = balance;
+    summary.energy_error = std::max(summary.energy_error, std::abs(balance - e0));
+    summary.energy_scale = std::max({summary.energy_scale, std::abs(e0), std::abs(ledger.boundary)});
+    if (!writer) return;
+    const double t = integrator.t();
+    writer->observe("kinetic_energy_translational", step, t, ke[0], "J");
+    writer->observe("kinetic_energy_rotational", step, t, ke[1], "J");
+    writer->observe("beam_energy", step, t, ub, "J");
+    writer->observe("contact_work", step, t, w_contact, "J");
+    writer->observe("damping_work", step, t, w_damping, "J");
+    writer->observe("friction_work", step, t, w_friction, "J");
+    writer->observe("broken_beam_energy", step, t, ledger.broken_energy, "J");
+    writer->observe("boundary_work", step, t, ledger.boundary, "J");
+    writer->observe("energy_balance", step, t, balance, "J");
+    writer->observe("intact_beams", step, t, static_cast<double>(model.beams().intact_count()), "1");
+    writer->observe("contacts", step, t, static_cast<double>(model.contacts().size()), "1");
+    if (setup.probe.active) {
+      writer->observe("stress", step, t, setup.probe.stress(model.forces(), n), "Pa");
+      writer->observe("axial_strain", step, t, setup.probe.axial_strain(q, n), "1");
+      writer->observe("lateral_strain", step, t, setup.probe.lateral_strain(q, n), "1");
+    }
+  };
+
+  observe(0);
+  write_frame(0);
+  double next_frame = scene.output.frame_interval;
+  std::int64_t last_break_step = -1;
+  const StopRule& stop = scene.stop;
+  const bool breaking = model.physics().breaking;
+  std::int64_t step = 0;
+  for (;;) {
+    integrator.step(model);
+    ++step;
+    // Ledger: the power of each term at this step's force evaluation, times dt.
+    for (Term t : model.terms()) ledger.work[static_cast<std::size_t>(t)] += model.power(t) * dt;
+    ledger.boundary += model.boundary_power() * dt;
+    if (model.non_finite_term() != Term::count || !all_finite(integrator.q()) || !all_finite(integrator.v()))
+      throw RuntimeError(blame_non_finite(model, integrator, step));
+    if (breaking) {
+      const std::size_t before = broken.size();
+      model.beams().break_beams(integrator.q(), model.material().t_eps, model.material().t_theta, broken);
+      for (std::size_t k = before; k < broken.size(); ++k) {
+        ledger.broken_energy += broken[k].energy;
+        if (writer)
+          writer->record_break({step, integrator.t(), broken[k].beam, static_cast<std::uint8_t>(broken[k].mode)});
+      }
+      if (broken.size() > before) last_break_step = step;
+    }
+    const double t = integrator.t();
+    std::string reason;
+    if (t >= stop.t_max * (1 - 1e-12)) reason = "t_max";
+    else if (step >= stop.max_steps) reason = "max_steps";
+    else if (breaking && stop.steps_without_breaking > 0 && last_break_step >= 0 &&
+             step - last_break_step >= stop.steps_without_breaking)
+      reason = "no beam broke for " + std::to_string(stop.steps_without_breaking) + " steps";
+    if (step % scene.output.observe_every == 0 || !reason.empty()) observe(step);
+    if (t >= next_frame * (1 - 1e-12) || !reason.empty()) {
+      write_frame(step);
+      while (next_frame <= t * (1 + 1e-12)) next_frame += scene.output.frame_interval;
+    }
+    progress.tick([&] {
+      std::ostringstream s;
+      s.precision(3);
+      const double el = progress.elapsed();
+      s << "t = " << t << " s, step " << step << ", " << static_cast<double>(step) / std::max(el, 1e-9)
+        << " steps/s, " << broken.size() << " beams broken, ETA " << (stop.t_max - t) / std::max(t, 1e-30) * el
+        << " s (at most)";
+      return s.str();
+    });
+    if (!reason.empty()) {
+      summary.stop_reason = reason;
+      break;
+    }
+  }
+  if (writer) writer->finish();
+  summary.steps = step;
+  summary.time = integrator.t();
+  summary.broken = static_cast<std::int64_t>(broken.size());
+  summary.wall_seconds = progress.elapsed();
+  return summary;
+}
+
+}  // namespace frac::dem

@@ -1,0 +1,39 @@
+#pragma once
+// A DEM run: integrate the model under its loading until the stop rule, break beams after each step,
+// keep the energy ledger, write decimated frames and observables, stop at once on a non-finite value
+// naming the step, the cell and the term.
+#include <cstdint>
+#include <string>
+
+#include "core/progress.hpp"
+#include "dem/loading.hpp"
+#include "dem/model.hpp"
+#include "dem/scene.hpp"
+#include "io/run_io.hpp"
+
+namespace frac::dem {
+
+struct RunSummary {
+  std::int64_t steps = 0;
+  double time = 0;            // s
+  double dt = 0;              // s
+  std::int64_t broken = 0;    // beams broken during the run
+  std::string stop_reason;    // "t_max", "max_steps", "no breaking for N steps"
+  double energy_error = 0;    // max |E_balance − E_balance(0)| over the run, J
+  double energy_scale = 0;    // J: the larger of the initial energy and the boundary work
+  double wall_seconds = 0;
+};
+
+struct Ledger {
+  double work[static_cast<std::size_t>(Term::count)] = {};  // work done by each term on the bodies, J
+  double boundary = 0;                                       // work done by the moving boundaries, J
+  double broken_energy = 0;                                  // elastic energy removed with broken beams, J
+};
+
+// Runs `model` from (q0, v0); writes frames and observables through `writer` (frames every
+// plan.frame_interval and the final state; observables every plan.observe_every steps).
+RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
+                   std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
+                   Progress& progress);
+
+}  // namespace frac::dem

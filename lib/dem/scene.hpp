@@ -1,0 +1,59 @@
+#pragma once
+// A DEM scene resolved from its file (data/scenes/*.ini) and the command-line overrides
+// (physics/polygon-dem.md §8, DESIGN.md §4): material, physics switches, loading, integrator, stop
+// rule and output plan. Defaults are Table 1 of the paper in SI.
+#include <string>
+
+#include "core/scene.hpp"
+#include "dem/material.hpp"
+#include "dynamics/integrator.hpp"
+
+namespace frac::dem {
+
+enum class LoadingKind { none, uniaxial, confined_compression, explosion, impact, pulse };
+
+struct Loading {
+  LoadingKind kind = LoadingKind::none;
+  std::string name = "none";
+  // uniaxial and confined-compression: boundary layers move apart (tension) or together (compression)
+  // at `boundary_speed` each, reached by constant acceleration over `ramp`.
+  bool tension = true;
+  double boundary_speed = 0.05;  // m/s
+  double ramp = 1e-3;            // s
+  double layer_depth = 0;        // m; cells whose centroid lies within it of the edge (0: one spacing g)
+  // explosion and pulse: kinetic energy E0 given to the neighbours of the central cell.
+  double energy = 500.0;         // J (for the scene's thickness)
+  // impact: speed of the projectile cell at the middle of the bottom layer, into the block (+y).
+  double impact_speed = 400.0;   // m/s
+};
+
+struct IntegratorSettings {
+  dynamics::IntegratorKind kind = dynamics::IntegratorKind::gear5;
+  double dt = 0;          // s; 0 = auto
+  double safety = 0.5;    // auto dt = safety × bound
+  bool allow_unstable = false;
+};
+
+struct StopRule {
+  double t_max = 0.01;                     // s
+  long long max_steps = 100000000;
+  long long steps_without_breaking = 300;  // after the first break; 0 = off
+};
+
+struct OutputPlan {
+  double frame_interval = 1e-4;  // s between trajectory frames (the final state is always a frame)
+  long long observe_every = 10;  // steps between observable samples
+};
+
+struct DemScene {
+  Material material;
+  Physics physics;
+  Loading loading;
+  IntegratorSettings integrator;
+  StopRule stop;
+  OutputPlan output;
+};
+
+DemScene read_dem_scene(Scene& scene);
+
+}  // namespace frac::dem

@@ -1,0 +1,28 @@
+#pragma once
+// One DEM simulation from a mesh and a resolved scene: the model, the loading, the time step and the
+// integrator, ready to run. What dem-run (and tests, benchmarks) build before calling run_dem.
+#include <memory>
+#include <vector>
+
+#include "dem/loading.hpp"
+#include "dem/model.hpp"
+#include "dem/run.hpp"
+#include "dem/scene.hpp"
+#include "dem/timestep.hpp"
+
+namespace frac::dem {
+
+struct Simulation {
+  Simulation(const mesh::CellMesh& mesh, const DemScene& scene);
+  DemScene scene;
+  Model model;
+  LoadingSetup setup;
+  TimeStep time_step;
+  std::unique_ptr<dynamics::Integrator> integrator;
+  std::vector<double> q0, v0;
+  RunSummary run(io::RunWriter* writer, Progress& progress) {
+    return run_dem(model, *integrator, scene, setup, q0, v0, time_step.dt, writer, progress);
+  }
+};
+
+}  // namespace frac::dem

@@ -1,0 +1,113 @@
+#include "dem/timestep.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "core/error.hpp"
+#include "dem/beam.hpp"
+#include "dem/bodies.hpp"
+
+namespace frac::dem {
+
+double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, const Physics& physics) {
+  const Bodies bodies = make_bodies(mesh, material);
+  const std::size_t n = bodies.n, nb = mesh.beams();
+  if (n == 0 || nb == 0) return 0.0;
+  std::vector<double> inv_sqrt_m(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    inv_sqrt_m[k] = inv_sqrt_m[n + k] = 1.0 / std::sqrt(bodies.mass[k]);
+    inv_sqrt_m[2 * n + k] = 1.0 / std::sqrt(bodies.inertia[k]);
+  }
+  struct Pair {
+    std::size_t i, j;
+    double ex, ey, l0, axial;
+    BeamStiffness k;
+  };
+  std::vector<Pair> pairs(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
+    const auto d = mesh.centroid[j] - mesh.centroid[i];
+    const double l0 = d.norm();
+    BeamStiffness k{0, 0, 0};
+    if (physics.beams)
+      k = beam_stiffness(l0, mesh.beam_section[b], material.thickness, material.beam_modulus, material.shear_ratio);
+    double axial = k.alpha;
+    if (physics.contacts)
+      axial += material.grain_modulus * material.thickness * mesh.beam_section[b] * 0.5 *
+               (1 / bodies.diameter[i] + 1 / bodies.diameter[j]);
+    pairs[b] = {i, j, d.x() / l0, d.y() / l0, l0, axial, k};
+  }
+  // y = M^{-1/2} K M^{-1/2} x, with K u = −F(u) of the linearised pair laws.
+  auto apply = [&](const std::vector<double>& x, std::vector<double>& y) {
+    std::vector<double> u(3 * n);
+    for (std::size_t k = 0; k < 3 * n; ++k) u[k] = x[k] * inv_sqrt_m[k];
+    std::fill(y.begin(), y.end(), 0.0);
+    for (const Pair& p : pairs) {
+      const double dx = u[p.j] - u[p.i], dy = u[n + p.j] - u[n + p.i];
+      const double da = dx * p.ex + dy * p.ey;     // axial stretch
+      const double dt = -dx * p.ey + dy * p.ex;    // transverse offset along t = ẑ × e
+      const double ti = u[2 * n + p.i] - dt / p.l0, tj = u[2 * n + p.j] - dt / p.l0;
+      const double l02 = p.l0 * p.l0;
+      const double mi = -(p.k.beta * l02 / 2) * tj + p.k.delta * l02 * (tj - ti);
+      const double mj = -(p.k.beta * l02 / 2) * ti + p.k.delta * l02 * (ti - tj);
+      const double q = (mi + mj) / p.l0;
+      const double fx = p.axial * da * p.ex - q * p.ey, fy = p.axial * da * p.ey + q * p.ex;  // force on i
+      y[p.i] -= fx;
+      y[n + p.i] -= fy;
+      y[p.j] += fx;
+      y[n + p.j] += fy;
+      y[2 * n + p.i] -= mi;
+      y[2 * n + p.j] -= mj;
+    }
+    for (std::size_t k = 0; k < 3 * n; ++k) y[k] *= inv_sqrt_m[k];
+  };
+  std::vector<double> x(3 * n), y(3 * n);
+  std::uint64_t s = 0x9e3779b97f4a7c15ULL;
+  for (auto& v : x) {  // deterministic start with every mode present
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    v = static_cast<double>(s >> 11) * 0x1.0p-53 - 0.5;
+  }
+  double lambda = 0;
+  for (int it = 0; it < 400; ++it) {
+    double norm = 0;
+    for (double v : x) norm += v * v;
+    norm = std::sqrt(norm);
+    if (norm == 0) return 0.0;
+    for (double& v : x) v /= norm;
+    apply(x, y);
+    double r = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) r += x[k] * y[k];
+    const double previous = lambda;
+    lambda = r;
+    x.swap(y);
+    if (it > 20 && std::abs(lambda - previous) < 1e-6 * lambda) break;
+  }
+  return std::sqrt(std::max(lambda, 0.0)) * 1.02;
+}
+
+TimeStep choose_time_step(const mesh::CellMesh& mesh, const Material& material, const Physics& physics,
+                          dynamics::IntegratorKind kind, double dt_requested, double safety, bool allow_unstable) {
+  TimeStep ts{};
+  ts.omega_max = max_eigenfrequency(mesh, material, physics);
+  const double limit = dynamics::stability_limit(kind);
+  ts.bound = ts.omega_max > 0 ? limit / ts.omega_max : 1e-3;
+  if (dt_requested <= 0) {
+    ts.dt = safety * ts.bound;
+  } else {
+    ts.dt = dt_requested;
+    if (dt_requested > ts.bound && !allow_unstable) {
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "integrator.dt = " << dt_requested << " s is above the stability bound " << ts.bound << " s of "
+          << dynamics::name(kind) << " (ω_max = " << ts.omega_max << " rad/s, ω·dt ≤ " << limit
+          << "); use a smaller dt, dt = auto, or integrator.allow_unstable = on";
+      throw UsageError(msg.str());
+    }
+  }
+  return ts;
+}
+
+}  // namespace frac::dem

@@ -1,0 +1,111 @@
+#pragma once
+// Time integrators shared by both models (polygon DEM and rubber lattice), over flat coordinate arrays.
+// A model exposes itself as a System: n generalised coordinates q (for the DEM: x of every cell, then y,
+// then the angle φ; for the rubber lattice: x then y of every node), whose accelerations depend on q,
+// the velocities v and the time. Two schemes sit behind one interface:
+//   gear5  : Gear's 6-value (5th-order) predictor-corrector, one force evaluation per step at the
+//            predicted positions and velocities (Allen & Tildesley App. E; corrector c0 = 3/16 because
+//            damping and friction make forces velocity-dependent). physics/polygon-dem.md §6.
+//   verlet : velocity Verlet; velocity-dependent forces see the velocity v + dt·a_old.
+// Coordinates a model prescribes (moving boundary layers) are overwritten every step through
+// System::prescribe and never integrated.
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace frac::dynamics {
+
+class System {
+ public:
+  virtual ~System() = default;
+  // Accelerations at (t, q, v) into a (all of size n). Called once per step; must not allocate.
+  virtual void accelerations(double t, std::span<const double> q, std::span<const double> v,
+                             std::span<double> a) = 0;
+  // The coordinates this system prescribes, and their values at time t (written into q, v, a at those
+  // indices only). The default prescribes nothing.
+  virtual std::span<const std::size_t> prescribed() const { return {}; }
+  virtual void prescribe(double /*t*/, std::span<double> /*q*/, std::span<double> /*v*/,
+                         std::span<double> /*a*/) const {}
+};
+
+enum class IntegratorKind { gear5, verlet };
+
+// "gear5" or "verlet"; UsageError naming `option` otherwise.
+IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option);
+std::string_view name(IntegratorKind kind);
+
+// The largest ω·dt for which the scheme stays stable on an undamped harmonic oscillator ẍ = −ω²x
+// (measured by tests/unit/test_integrator.cpp). The time-step check divides it by ω_max.
+double stability_limit(IntegratorKind kind);
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // Sets q(t0) = q0, v(t0) = v0 and evaluates the initial accelerations.
+  // For gear5 the higher derivatives start at zero (the usual start; limits global accuracy to O(dt²)),
+  // unless `jerk_etc` supplies exact scaled derivatives (tests).
+  virtual void start(System& system, double t0, double dt, std::span<const double> q0,
+                     std::span<const double> v0) = 0;
+  // Advances by one step of dt.
+  virtual void step(System& system) = 0;
+
+  virtual IntegratorKind kind() const = 0;
+  // Current state (after the last step): positions, velocities, accelerations.
+  virtual std::span<const double> q() const = 0;
+  virtual std::span<const double> v() const = 0;
+  virtual std::span<const double> a() const = 0;
+  // Mutable access, for a model that must change the state between steps (e.g. a kick).
+  // For gear5, changing v resets nothing else: the next step's corrector takes it from there.
+  virtual void set_velocity(std::size_t i, double value) = 0;
+  double t() const { return t_; }
+  double dt() const { return dt_; }
+  std::size_t size() const { return n_; }
+  long long steps() const { return steps_; }
+
+ protected:
+  double t_ = 0, dt_ = 0;
+  std::size_t n_ = 0;
+  long long steps_ = 0;
+};
+
+std::unique_ptr<Integrator> make_integrator(IntegratorKind kind);
+
+// Gear's scheme, also usable directly (tests set exact initial derivatives).
+class Gear5 final : public Integrator {
+ public:
+  void start(System& system, double t0, double dt, std::span<const double> q0,
+             std::span<const double> v0) override;
+  // Exact start for convergence tests: derivs[k][i] = d^k q_i/dt^k at t0, k = 0..5 (k = 2 is
+  // recomputed from the system).
+  void start_exact(System& system, double t0, double dt, const std::vector<std::vector<double>>& derivs);
+  void step(System& system) override;
+  IntegratorKind kind() const override { return IntegratorKind::gear5; }
+  std::span<const double> q() const override { return r_[0]; }
+  std::span<const double> v() const override { return v_; }
+  std::span<const double> a() const override { return a_; }
+  void set_velocity(std::size_t i, double value) override;
+
+ private:
+  void apply_prescribed(const System& system, double t);
+  std::vector<double> r_[6];  // scaled derivatives r_k = dt^k/k! · d^k q/dt^k
+  std::vector<double> v_, a_;
+};
+
+class VelocityVerlet final : public Integrator {
+ public:
+  void start(System& system, double t0, double dt, std::span<const double> q0,
+             std::span<const double> v0) override;
+  void step(System& system) override;
+  IntegratorKind kind() const override { return IntegratorKind::verlet; }
+  std::span<const double> q() const override { return q_; }
+  std::span<const double> v() const override { return v_; }
+  std::span<const double> a() const override { return a_; }
+  void set_velocity(std::size_t i, double value) override { v_[i] = value; }
+
+ private:
+  std::vector<double> q_, v_, a_, v_est_;
+};
+
+}  // namespace frac::dynamics

@@ -1,0 +1,157 @@
+#include "io/run_io.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "io/mesh_io.hpp"
+
+namespace frac::io {
+namespace {
+const char* body_group(bool cells) { return cells ? "particles/cells" : "particles/nodes"; }
+const char* link_group(bool cells) { return cells ? "connectivity/beams" : "connectivity/bonds"; }
+const char* breaks_name(bool cells) { return cells ? "beam_breaks" : "bond_breaks"; }
+}  // namespace
+
+RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const double> mass,
+                     std::span<const double> inertia)
+    : root_(root), cells_(true), bodies_(mesh.cells()), links_(mesh.beams()) {
+  root_.set_attr("model", "dem");
+  write_mesh(root_, mesh);
+  Group cells = root_.group(body_group(true));
+  cells.write("mass", mass, {bodies_}, "kg");
+  cells.write("inertia", inertia, {bodies_}, "kg m^2");
+}
+
+RunWriter::RunWriter(Group& root, const mesh::NodeMesh& mesh, std::span<const double> mass)
+    : root_(root), cells_(false), bodies_(mesh.position.size()), links_(mesh.bond.size()) {
+  root_.set_attr("model", "rubber");
+  write_mesh(root_, mesh);
+  Group nodes = root_.group(body_group(false));
+  nodes.write("mass", mass, {bodies_}, "kg");
+}
+
+void RunWriter::write_frame(const BodyFrame& f) {
+  if (!position_) {
+    Group bodies = root_.group(body_group(cells_));
+    Group links = root_.group(link_group(cells_));
+    position_ = std::make_unique<SeriesWriter>(bodies, "position", std::vector<hsize_t>{bodies_, 2}, "m");
+    velocity_ = std::make_unique<SeriesWriter>(bodies, "velocity", std::vector<hsize_t>{bodies_, 2}, "m s-1");
+    if (cells_) {
+      angle_ = std::make_unique<SeriesWriter>(bodies, "angle", std::vector<hsize_t>{bodies_}, "rad");
+      angular_velocity_ =
+          std::make_unique<SeriesWriter>(bodies, "angular_velocity", std::vector<hsize_t>{bodies_}, "rad s-1");
+    }
+    intact_ = std::make_unique<SeriesWriter>(links, "intact", std::vector<hsize_t>{links_}, "", SeriesType::uint8);
+    strain_ = std::make_unique<SeriesWriter>(links, "strain", std::vector<hsize_t>{links_}, "1");
+  }
+  position_->append(f.step, f.time, std::span<const double>(f.position));
+  velocity_->append(f.step, f.time, std::span<const double>(f.velocity));
+  if (cells_) {
+    angle_->append(f.step, f.time, std::span<const double>(f.angle));
+    angular_velocity_->append(f.step, f.time, std::span<const double>(f.angular_velocity));
+  }
+  intact_->append(f.step, f.time, std::span<const std::uint8_t>(f.intact));
+  strain_->append(f.step, f.time, std::span<const double>(f.strain));
+}
+
+void RunWriter::observe(const std::string& name, std::int64_t step, double time, std::span<const double> value,
+                        std::string_view unit) {
+  auto it = observables_.find(name);
+  if (it == observables_.end()) {
+    Group obs = root_.has("observables") ? root_.group("observables") : root_.create_group("observables");
+    std::vector<hsize_t> dims;
+    if (value.size() != 1) dims.push_back(value.size());
+    it = observables_.emplace(name, std::make_unique<SeriesWriter>(obs, name, dims, unit)).first;
+  }
+  it->second->append(step, time, value);
+}
+
+void RunWriter::finish() {
+  Group obs = root_.has("observables") ? root_.group("observables") : root_.create_group("observables");
+  Group g = obs.create_group(breaks_name(cells_));
+  std::vector<std::int64_t> step, index;
+  std::vector<double> time;
+  std::vector<std::uint8_t> mode;
+  for (const auto& e : breaks_) {
+    step.push_back(e.step);
+    time.push_back(e.time);
+    index.push_back(e.index);
+    mode.push_back(e.mode);
+  }
+  const hsize_t k = breaks_.size();
+  g.write("step", std::span<const std::int64_t>(step), {k});
+  g.write("time", std::span<const double>(time), {k}, "s");
+  g.write("index", std::span<const std::int64_t>(index), {k});
+  g.write("mode", std::span<const std::uint8_t>(mode), {k});
+  g.set_attr("mode_meaning", cells_ ? "1 stretching, 2 bending, 3 both" : "1 separation past u_c");
+}
+
+RunInfo read_run_info(const Group& root) {
+  RunInfo info;
+  if (!root.has_attr("model")) throw InputError(root.where() + ": not a run file (no 'model' attribute)");
+  info.model = root.attr_string("model");
+  if (info.model != "dem" && info.model != "rubber")
+    throw InputError(root.where() + ": unknown model '" + info.model + "'");
+  const bool cells = info.model == "dem";
+  const Group bodies = root.group(body_group(cells));
+  info.mass = bodies.read<double>("mass", nullptr, 1);
+  if (cells) info.inertia = bodies.read<double>("inertia", nullptr, 1);
+  const SeriesInfo s = read_series_info(bodies, "position");
+  info.step = s.step;
+  info.time = s.time;
+  if (info.step.empty()) throw InputError(bodies.where("position") + ": the run holds no frames");
+  return info;
+}
+
+BodyFrame read_frame(const Group& root, long long frame) {
+  const RunInfo info = read_run_info(root);
+  const bool cells = info.model == "dem";
+  const Group bodies = root.group(body_group(cells));
+  const Group links = root.group(link_group(cells));
+  const auto frames = static_cast<long long>(info.step.size());
+  const long long k = frame < 0 ? frames + frame : frame;
+  BodyFrame f;
+  f.position = read_series_frame<double>(bodies, "position", frame);
+  if (k >= 0 && k < frames) {
+    f.step = info.step[static_cast<std::size_t>(k)];
+    f.time = info.time[static_cast<std::size_t>(k)];
+  }
+  f.velocity = read_series_frame<double>(bodies, "velocity", frame);
+  if (cells) {
+    f.angle = read_series_frame<double>(bodies, "angle", frame);
+    f.angular_velocity = read_series_frame<double>(bodies, "angular_velocity", frame);
+  }
+  f.intact = read_series_frame<std::uint8_t>(links, "intact", frame);
+  f.strain = read_series_frame<double>(links, "strain", frame);
+  const std::size_t n = info.mass.size();
+  if (f.position.size() != 2 * n || f.velocity.size() != 2 * n || (cells && f.angle.size() != n))
+    throw InputError(bodies.where("position") + ": frame size does not match the mass dataset");
+  return f;
+}
+
+long long frame_at_time(const RunInfo& info, double t) {
+  long long best = 0;
+  for (std::size_t k = 0; k < info.time.size(); ++k)
+    if (std::abs(info.time[k] - t) < std::abs(info.time[static_cast<std::size_t>(best)] - t))
+      best = static_cast<long long>(k);
+  return best;
+}
+
+std::vector<BreakEvent> read_breaks(const Group& root) {
+  const RunInfo info = read_run_info(root);
+  const bool cells = info.model == "dem";
+  std::vector<BreakEvent> out;
+  const std::string path = std::string("observables/") + breaks_name(cells);
+  if (!root.has(path)) return out;
+  const Group g = root.group(path);
+  const auto step = g.read<std::int64_t>("step", nullptr, 1);
+  const auto time = g.read<double>("time", nullptr, 1);
+  const auto index = g.read<std::int64_t>("index", nullptr, 1);
+  const auto mode = g.read<std::uint8_t>("mode", nullptr, 1);
+  if (time.size() != step.size() || index.size() != step.size() || mode.size() != step.size())
+    throw InputError(g.where() + ": step, time, index and mode differ in length");
+  for (std::size_t k = 0; k < step.size(); ++k) out.push_back({step[k], time[k], index[k], mode[k]});
+  return out;
+}
+
+}  // namespace frac::io

@@ -1,0 +1,139 @@
+#include "io/series.hpp"
+
+#include <algorithm>
+
+#include "core/error.hpp"
+
+namespace frac::io {
+namespace {
+
+Hid create_extendible(const Group& g, const char* name, hid_t file_type, const std::vector<hsize_t>& frame_dims,
+                      bool compress) {
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{1};
+  hsize_t frame = 1;
+  for (auto d : frame_dims) {
+    dims.push_back(d);
+    maxdims.push_back(d);
+    chunk.push_back(std::max<hsize_t>(d, 1));
+    frame *= d;
+  }
+  // Chunks of about 64 Ki values: many small frames per chunk, or one large frame.
+  chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(1024, (1u << 16) / std::max<hsize_t>(frame, 1)));
+  Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()));
+  Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_obj_track_times(dcpl.get(), 0);
+  H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data());
+  if (compress) {
+    H5Pset_shuffle(dcpl.get());
+    H5Pset_deflate(dcpl.get(), 1);
+  }
+  Hid d(H5Dcreate2(g.id(), name, file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
+  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset");
+  return d;
+}
+
+void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type, const void* data,
+                 std::size_t row, const std::vector<hsize_t>& frame_dims) {
+  std::vector<hsize_t> dims{row + 1}, start{row}, count{1};
+  for (auto fd : frame_dims) {
+    dims.push_back(fd);
+    start.push_back(0);
+    count.push_back(fd);
+  }
+  if (H5Dset_extent(d.get(), dims.data()) < 0) throw RuntimeError(g.where(name) + ": cannot extend dataset");
+  Hid fspace(H5Dget_space(d.get()));
+  H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
+  if (H5Dwrite(d.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, data) < 0)
+    throw RuntimeError(g.where(name) + ": cannot write frame " + std::to_string(row));
+}
+
+}  // namespace
+
+SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsize_t> frame_dims,
+                           std::string_view unit, SeriesType type)
+    : group_(parent.create_group(name)), frame_dims_(std::move(frame_dims)) {
+  for (auto d : frame_dims_) frame_size_ *= d;
+  step_ = create_extendible(group_, "step", H5T_STD_I64LE, {}, false);
+  time_ = create_extendible(group_, "time", H5T_IEEE_F64LE, {}, false);
+  const hid_t ftype = type == SeriesType::float64 ? H5T_IEEE_F64LE
+                      : type == SeriesType::int64 ? H5T_STD_I64LE
+                                                  : H5T_STD_U8LE;
+  value_ = create_extendible(group_, "value", ftype, frame_dims_, frame_size_ >= 64);
+  group_.set_attr("unit", "s", "time");
+  if (!unit.empty()) group_.set_attr("unit", unit, "value");
+}
+
+void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame,
+                              std::size_t count) {
+  if (count != frame_size_)
+    throw RuntimeError(group_.where("value") + ": frame of " + std::to_string(count) + " values, expected " +
+                       std::to_string(frame_size_));
+  append_rows(group_, "step", step_, H5T_NATIVE_INT64, &step, frames_, {});
+  append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, &time, frames_, {});
+  append_rows(group_, "value", value_, mem_type, frame, frames_, frame_dims_);
+  ++frames_;
+}
+
+void SeriesWriter::append(std::int64_t step, double time, std::span<const double> frame) {
+  append_raw(step, time, H5T_NATIVE_DOUBLE, frame.data(), frame.size());
+}
+void SeriesWriter::append(std::int64_t step, double time, std::span<const std::uint8_t> frame) {
+  append_raw(step, time, H5T_NATIVE_UINT8, frame.data(), frame.size());
+}
+void SeriesWriter::append(std::int64_t step, double time, std::span<const std::int64_t> frame) {
+  append_raw(step, time, H5T_NATIVE_INT64, frame.data(), frame.size());
+}
+
+SeriesInfo read_series_info(const Group& parent, std::string_view name) {
+  const Group g = parent.group(name);
+  SeriesInfo info;
+  info.step = g.read<std::int64_t>("step", nullptr, 1);
+  info.time = g.read<double>("time", nullptr, 1);
+  if (info.step.size() != info.time.size())
+    throw InputError(g.where() + ": step and time have different lengths");
+  Hid d(H5Dopen2(g.id(), "value", H5P_DEFAULT));
+  if (d.get() < 0) throw InputError(g.where("value") + ": no such dataset");
+  Hid space(H5Dget_space(d.get()));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  if (dims.empty() || dims[0] != info.step.size())
+    throw InputError(g.where("value") + ": its first dimension does not match step");
+  info.frame_dims.assign(dims.begin() + 1, dims.end());
+  return info;
+}
+
+template <class T>
+std::vector<T> read_series_frame(const Group& parent, std::string_view name, long long frame) {
+  const SeriesInfo info = read_series_info(parent, name);
+  const auto frames = static_cast<long long>(info.step.size());
+  const long long k = frame < 0 ? frames + frame : frame;
+  const Group g = parent.group(name);
+  if (k < 0 || k >= frames)
+    throw InputError(g.where() + ": no frame " + std::to_string(frame) + " (it has " + std::to_string(frames) +
+                     ")");
+  Hid d(H5Dopen2(g.id(), "value", H5P_DEFAULT));
+  std::vector<hsize_t> start{static_cast<hsize_t>(k)}, count{1};
+  hsize_t size = 1;
+  for (auto fd : info.frame_dims) {
+    start.push_back(0);
+    count.push_back(fd);
+    size *= fd;
+  }
+  Hid fspace(H5Dget_space(d.get()));
+  H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
+  std::vector<T> out(size);
+  hid_t mem = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE
+              : std::is_same_v<T, std::int64_t> ? H5T_NATIVE_INT64
+                                                : H5T_NATIVE_UINT8;
+  if (size > 0 && H5Dread(d.get(), mem, mspace.get(), fspace.get(), H5P_DEFAULT, out.data()) < 0)
+    throw InputError(g.where("value") + ": cannot read frame " + std::to_string(k));
+  return out;
+}
+template std::vector<double> read_series_frame<double>(const Group&, std::string_view, long long);
+template std::vector<std::int64_t> read_series_frame<std::int64_t>(const Group&, std::string_view, long long);
+template std::vector<std::uint8_t> read_series_frame<std::uint8_t>(const Group&, std::string_view, long long);
+
+}  // namespace frac::io

@@ -1,0 +1,46 @@
+#pragma once
+// H5MD time series, written frame by frame: a group <name> holding step [T] (int64), time [T] (s) and
+// value [T, ...] (one frame of fixed shape per entry), extendible, chunked and compressed, so a run can
+// append frames as it goes and never holds its trajectory in memory. Read back whole, or one frame.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "io/hdf5.hpp"
+
+namespace frac::io {
+
+enum class SeriesType { float64, int64, uint8 };
+
+class SeriesWriter {
+ public:
+  // Creates <parent>/<name>/{step,time,value}; `frame_dims` is the shape of one frame ({} = a scalar).
+  SeriesWriter(Group& parent, std::string_view name, std::vector<hsize_t> frame_dims, std::string_view unit,
+               SeriesType type = SeriesType::float64);
+  void append(std::int64_t step, double time, std::span<const double> frame);
+  void append(std::int64_t step, double time, std::span<const std::uint8_t> frame);
+  void append(std::int64_t step, double time, std::span<const std::int64_t> frame);
+  std::size_t frames() const { return frames_; }
+
+ private:
+  void append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame, std::size_t count);
+  Group group_;
+  Hid step_, time_, value_;
+  std::vector<hsize_t> frame_dims_;
+  std::size_t frame_size_ = 1;
+  std::size_t frames_ = 0;
+};
+
+struct SeriesInfo {
+  std::vector<std::int64_t> step;
+  std::vector<double> time;
+  std::vector<hsize_t> frame_dims;
+};
+// Steps, times and frame shape of the series <parent>/<name>; InputError naming it if malformed.
+SeriesInfo read_series_info(const Group& parent, std::string_view name);
+// One frame (index into step/time; negative counts from the end) of a series, converted to T.
+template <class T>
+std::vector<T> read_series_frame(const Group& parent, std::string_view name, long long frame);
+
+}  // namespace frac::io
