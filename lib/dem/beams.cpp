@@ -40,9 +40,15 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const {
   double* fx = f.data();
   double* fy = fx + n_;
   double* tz = fy + n_;
-  for (const std::int32_t b32 : active_) {
-    const auto b = static_cast<std::size_t>(b32);
-    const BeamResponse r = response(b, q);
+  const std::size_t count = active_.size();
+  if (response_.size() < count) response_.resize(count);
+  // Responses in parallel (each beam its own slot), then the forces summed in beam order: the same
+  // bits whatever the thread count.
+#pragma omp parallel for schedule(static) if (count > 4096)
+  for (std::size_t k = 0; k < count; ++k) response_[k] = response(static_cast<std::size_t>(active_[k]), q);
+  for (std::size_t k = 0; k < count; ++k) {
+    const BeamResponse& r = response_[k];
+    const auto b = static_cast<std::size_t>(active_[k]);
     const auto i = static_cast<std::size_t>(i_[b]), j = static_cast<std::size_t>(j_[b]);
     fx[i] += r.fx;
     fy[i] += r.fy;

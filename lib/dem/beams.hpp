@@ -53,6 +53,7 @@ class Beams {
   std::vector<BeamStiffness> k_;
   std::vector<std::uint8_t> intact_;
   std::vector<std::int32_t> active_;
+  mutable std::vector<BeamResponse> response_;  // per active beam, filled in parallel, summed in order
 };
 
 }  // namespace frac::dem

@@ -28,6 +28,7 @@ void ContactSearch::world_vertices(std::span<const double> q) {
   const double* x = q.data();
   const double* y = x + n;
   const double* phi = y + n;
+#pragma omp parallel for schedule(static) if (n > 4096)
   for (std::size_t k = 0; k < n; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
     const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
@@ -83,6 +84,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   const auto& r = bodies_->bound_radius;
   const auto& d = bodies_->diameter;
   const double g = bodies_->length_scale;
+  candidates_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const auto ci = static_cast<std::size_t>(cell_of_[i]);
     const std::size_t cx = ci % gx, cy = ci / gx;
@@ -95,27 +97,45 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
           const double dx = x[j] - x[i], dy = y[j] - y[i];
           const double reach = r[i] + r[j];
           if (dx * dx + dy * dy >= reach * reach) continue;
-          ++out.candidate_pairs;
-          const auto pi = std::span<const Vec2>(world_.data() + mesh_->vertex_offset[i],
-                                                static_cast<std::size_t>(mesh_->vertex_offset[i + 1] - mesh_->vertex_offset[i]));
-          const auto pj = std::span<const Vec2>(world_.data() + mesh_->vertex_offset[j],
-                                                static_cast<std::size_t>(mesh_->vertex_offset[j + 1] - mesh_->vertex_offset[j]));
-          const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), g);
-          if (geo.kind == geometry::ContactGeometry::Kind::none) continue;
-          if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
-          if (geo.distinct_crossings > 2) ++out.multi_crossing;
-          out.i.push_back(static_cast<std::int32_t>(i));
-          out.j.push_back(static_cast<std::int32_t>(j));
-          out.rx.push_back(geo.point.x());
-          out.ry.push_back(geo.point.y());
-          out.nx.push_back(geo.normal.x());
-          out.ny.push_back(geo.normal.y());
-          out.area.push_back(geo.area);
-          out.inv_lc.push_back(0.5 * (1.0 / d[i] + 1.0 / d[j]));
-          out.fn.push_back(0.0);
+          candidates_.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
         }
       }
     }
+  }
+  out.candidate_pairs = static_cast<std::int64_t>(candidates_.size());
+  if (geometry_.size() < candidates_.size()) geometry_.resize(candidates_.size() + candidates_.size() / 4);
+  // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep.
+  const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
+  const auto count = static_cast<std::ptrdiff_t>(candidates_.size());
+  const auto& offset = mesh_->vertex_offset;
+#pragma omp parallel for schedule(static) if (count > 1024)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)][0]);
+    const auto j = static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)][1]);
+    const std::span<const Vec2> pi(world_.data() + offset[i], static_cast<std::size_t>(offset[i + 1] - offset[i]));
+    const std::span<const Vec2> pj(world_.data() + offset[j], static_cast<std::size_t>(offset[j + 1] - offset[j]));
+    const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
+    auto& geo = geometry_[static_cast<std::size_t>(k)];
+    if (geometry::separated_by_facing_edge(pi, pj, ci, cj, slack))
+      geo.kind = geometry::ContactGeometry::Kind::none;
+    else
+      geo = geometry::convex_overlap(pi, pj, ci, cj, g);
+  }
+  for (std::size_t k = 0; k < candidates_.size(); ++k) {
+    const auto& geo = geometry_[k];
+    if (geo.kind == geometry::ContactGeometry::Kind::none) continue;
+    const auto i = static_cast<std::size_t>(candidates_[k][0]), j = static_cast<std::size_t>(candidates_[k][1]);
+    if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
+    if (geo.distinct_crossings > 2) ++out.multi_crossing;
+    out.i.push_back(static_cast<std::int32_t>(i));
+    out.j.push_back(static_cast<std::int32_t>(j));
+    out.rx.push_back(geo.point.x());
+    out.ry.push_back(geo.point.y());
+    out.nx.push_back(geo.normal.x());
+    out.ny.push_back(geo.normal.y());
+    out.area.push_back(geo.area);
+    out.inv_lc.push_back(0.5 * (1.0 / d[i] + 1.0 / d[j]));
+    out.fn.push_back(0.0);
   }
 }
 

@@ -8,11 +8,15 @@
 //   contact_friction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
 // Every pair force is equal and opposite and acts at one point, so momentum and angular momentum are
 // conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger.
+// Threads (OpenMP) share only the overlap geometry of the candidate pairs, each written to its own
+// slot; the list is then filled in pair order, so results do not depend on the thread count.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "dem/bodies.hpp"
+#include "geometry/overlap.hpp"
 #include "geometry/vec2.hpp"
 
 namespace frac::dem {
@@ -49,6 +53,8 @@ class ContactSearch {
   std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
   std::vector<std::int32_t> cell_of_;
   std::vector<std::int32_t> sorted_;
+  std::vector<std::array<std::int32_t, 2>> candidates_;  // pairs whose bounding circles overlap
+  std::vector<geometry::ContactGeometry> geometry_;      // one slot per candidate (filled in parallel)
 };
 
 struct ContactParameters {

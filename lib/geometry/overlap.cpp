@@ -1,5 +1,7 @@
 #include "geometry/overlap.hpp"
 
+#include <limits>
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -231,6 +233,47 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap) {
   return overlap_impl(pi, pj, ci, cj, length_scale, &overlap);
+}
+
+namespace {
+// Whether an edge of `p` separates q from p (all of q's vertices at most `slack` inside the edge's
+// line). Starts with the edge whose outward normal points most along d (usually the shared edge of a
+// tessellation), then tries the others: a full separating-axis test over p's edges, early exit.
+bool edge_of_p_separates(std::span<const Vec2> p, std::span<const Vec2> q, const Vec2& d, double slack) {
+  const std::size_t n = p.size();
+  std::size_t best = 0;
+  double best_dot = -std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < n; ++a) {
+    const Vec2 e = p[(a + 1) % n] - p[a];
+    const double dot = (e.y() * d.x() - e.x() * d.y()) / std::max(e.norm(), 1e-300);
+    if (dot > best_dot) {
+      best_dot = dot;
+      best = a;
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = (best + k) % n;
+    const Vec2 e = p[(a + 1) % n] - p[a];
+    const double len = e.norm();
+    if (len == 0) continue;
+    const Vec2 normal(e.y() / len, -e.x() / len);
+    if (k > 0 && normal.dot(d) <= 0) continue;  // an edge facing away from q cannot separate convex q
+    bool separates = true;
+    for (const Vec2& v : q)
+      if (normal.dot(v - p[a]) < -slack) {
+        separates = false;
+        break;
+      }
+    if (separates) return true;
+  }
+  return false;
+}
+}  // namespace
+
+bool separated_by_facing_edge(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                              double slack) {
+  const Vec2 d = cj - ci;
+  return edge_of_p_separates(pi, pj, d, slack) || edge_of_p_separates(pj, pi, -d, slack);
 }
 
 }  // namespace frac::geometry

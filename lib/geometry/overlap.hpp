@@ -81,4 +81,12 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap);
 
+// A cheap test that comes before convex_overlap: true when an edge of P_i (the one whose outward normal
+// points most toward c_j) or of P_j (most toward c_i) separates the two polygons, allowing a
+// penetration of at most `slack`. With slack ≤ eps_A / (the polygons' diameter), every pair it reports
+// separated is one convex_overlap reports as none, so skipping those pairs changes no result. Neighbours
+// of an unstressed tessellation touch along a shared edge and are separated by it.
+bool separated_by_facing_edge(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                              double slack);
+
 }  // namespace frac::geometry
