@@ -21,7 +21,25 @@ void ContactList::clear() {
 }
 
 ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
-    : mesh_(&mesh), bodies_(&bodies), world_(mesh.vertex.size()), cell_of_(bodies.n), sorted_(bodies.n) {}
+    : mesh_(&mesh),
+      bodies_(&bodies),
+      world_(mesh.vertex.size()),
+      cell_of_(bodies.n),
+      sorted_(bodies.n),
+      skin_(0.2 * bodies.length_scale) {}
+
+bool ContactSearch::stale(std::span<const double> q) const {
+  if (ref_.size() != q.size()) return true;
+  const std::size_t n = bodies_->n;
+  const double half = 0.5 * skin_;
+  const auto& r = bodies_->bound_radius;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double dx = q[k] - ref_[k], dy = q[n + k] - ref_[n + k];
+    const double moved = std::sqrt(dx * dx + dy * dy) + r[k] * std::abs(q[2 * n + k] - ref_[2 * n + k]);
+    if (!(moved <= half)) return true;  // also catches NaN
+  }
+  return false;
+}
 
 void ContactSearch::world_vertices(std::span<const double> q) {
   const std::size_t n = bodies_->n;
@@ -40,11 +58,11 @@ void ContactSearch::world_vertices(std::span<const double> q) {
   }
 }
 
-void ContactSearch::find(std::span<const double> q, ContactList& out) {
-  out.clear();
+void ContactSearch::rebuild(std::span<const double> q) {
+  ++rebuilds_;
+  ref_.assign(q.begin(), q.end());
+  neighbours_.clear();
   const std::size_t n = bodies_->n;
-  if (n < 2) return;
-  world_vertices(q);
   const double* x = q.data();
   const double* y = x + n;
   // Cell list: grid cells of side 2·max bounding radius, so every overlapping pair sits in the same or
@@ -56,7 +74,9 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     ymin = std::min(ymin, y[k]);
     ymax = std::max(ymax, y[k]);
   }
-  const double side = 2 * bodies_->max_bound_radius;
+  // A non-finite position ends the run at the step's check; build no list from it.
+  if (!std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin)) return;
+  const double side = 2 * bodies_->max_bound_radius + skin_;
   // Bound the grid size (fragments flying far apart): at most ~4 grid cells per body.
   const double span_x = xmax - xmin, span_y = ymax - ymin;
   double cell = side;
@@ -82,9 +102,6 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     start[0] = 0;
   }
   const auto& r = bodies_->bound_radius;
-  const auto& d = bodies_->diameter;
-  const double g = bodies_->length_scale;
-  candidates_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const auto ci = static_cast<std::size_t>(cell_of_[i]);
     const std::size_t cx = ci % gx, cy = ci / gx;
@@ -95,28 +112,52 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
           const auto j = static_cast<std::size_t>(sorted_[static_cast<std::size_t>(s)]);
           if (j <= i) continue;
           const double dx = x[j] - x[i], dy = y[j] - y[i];
-          const double reach = r[i] + r[j];
+          const double reach = r[i] + r[j] + skin_;
           if (dx * dx + dy * dy >= reach * reach) continue;
-          candidates_.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+          const Vec2 dij(dx, dy);
+          neighbours_.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
+                                 static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
+                                 static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij))});
         }
       }
     }
+  }
+}
+
+void ContactSearch::find(std::span<const double> q, ContactList& out) {
+  out.clear();
+  const std::size_t n = bodies_->n;
+  if (n < 2) return;
+  world_vertices(q);
+  if (stale(q)) rebuild(q);
+  const double* x = q.data();
+  const double* y = x + n;
+  const auto& r = bodies_->bound_radius;
+  const auto& d = bodies_->diameter;
+  const double g = bodies_->length_scale;
+  candidates_.clear();
+  for (const auto& pair : neighbours_) {
+    const auto i = static_cast<std::size_t>(pair[0]), j = static_cast<std::size_t>(pair[1]);
+    const double dx = x[j] - x[i], dy = y[j] - y[i];
+    const double reach = r[i] + r[j];
+    if (dx * dx + dy * dy < reach * reach) candidates_.push_back(pair);
   }
   out.candidate_pairs = static_cast<std::int64_t>(candidates_.size());
   if (geometry_.size() < candidates_.size()) geometry_.resize(candidates_.size() + candidates_.size() / 4);
   // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep.
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const auto count = static_cast<std::ptrdiff_t>(candidates_.size());
-  const auto& offset = mesh_->vertex_offset;
 #pragma omp parallel for schedule(static) if (count > 1024)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const auto i = static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)][0]);
-    const auto j = static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)][1]);
-    const std::span<const Vec2> pi(world_.data() + offset[i], static_cast<std::size_t>(offset[i + 1] - offset[i]));
-    const std::span<const Vec2> pj(world_.data() + offset[j], static_cast<std::size_t>(offset[j + 1] - offset[j]));
+    const auto& pair = candidates_[static_cast<std::size_t>(k)];
+    const auto i = static_cast<std::size_t>(pair[0]), j = static_cast<std::size_t>(pair[1]);
+    const auto pi = world_polygon(i), pj = world_polygon(j);
     const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
     auto& geo = geometry_[static_cast<std::size_t>(k)];
-    if (geometry::separated_by_facing_edge(pi, pj, ci, cj, slack))
+    // The cached facing edges first (a tessellation's shared edge), then the current facing edges.
+    if (geometry::edge_separates(pi, static_cast<std::size_t>(pair[2]), pj, slack) ||
+        geometry::edge_separates(pj, static_cast<std::size_t>(pair[3]), pi, slack) ||
+        geometry::separated_by_facing_edge(pi, pj, ci, cj, slack))
       geo.kind = geometry::ContactGeometry::Kind::none;
     else
       geo = geometry::convex_overlap(pi, pj, ci, cj, g);

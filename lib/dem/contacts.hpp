@@ -44,16 +44,31 @@ class ContactSearch {
   ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies);
   // Finds every overlapping pair at state q and fills `out` (cleared first).
   void find(std::span<const double> q, ContactList& out);
+  // How often the neighbour list was rebuilt.
+  std::int64_t rebuilds() const { return rebuilds_; }
 
  private:
   void world_vertices(std::span<const double> q);
+  std::span<const Vec2> world_polygon(std::size_t k) const {
+    const auto& off = mesh_->vertex_offset;
+    return {world_.data() + off[k], static_cast<std::size_t>(off[k + 1] - off[k])};
+  }
   const mesh::CellMesh* mesh_ = nullptr;
   const Bodies* bodies_ = nullptr;
   std::vector<Vec2> world_;               // vertices of every cell in world coordinates
   std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
   std::vector<std::int32_t> cell_of_;
   std::vector<std::int32_t> sorted_;
-  std::vector<std::array<std::int32_t, 2>> candidates_;  // pairs whose bounding circles overlap
+  bool stale(std::span<const double> q) const;
+  void rebuild(std::span<const double> q);
+  // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when some
+  // vertex may have moved by more than skin/2 since the last build (centroid displacement plus bounding
+  // radius times rotation), so no pair can start to overlap unseen.
+  double skin_ = 0;
+  std::vector<double> ref_;  // q at the last build
+  std::vector<std::array<std::int32_t, 4>> neighbours_;  // i, j, facing edge of i, facing edge of j
+  std::int64_t rebuilds_ = 0;
+  std::vector<std::array<std::int32_t, 4>> candidates_;  // those whose bounding circles overlap now
   std::vector<geometry::ContactGeometry> geometry_;      // one slot per candidate (filled in parallel)
 };
 

@@ -1,5 +1,6 @@
 #include "dem/run.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -58,6 +59,9 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   frame.strain.resize(nb);
 
   integrator.start(model, 0.0, dt, q0, v0);
+  std::array<double, static_cast<std::size_t>(Term::count)> previous_power{};
+  for (Term t : model.terms()) previous_power[static_cast<std::size_t>(t)] = model.power(t);
+  double previous_boundary_power = model.boundary_power();
   auto write_frame = [&](std::int64_t step) {
     if (!writer) return;
     const auto q = integrator.q();
@@ -121,9 +125,14 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   for (;;) {
     integrator.step(model);
     ++step;
-    // Ledger: the power of each term at this step's force evaluation, times dt.
-    for (Term t : model.terms()) ledger.work[static_cast<std::size_t>(t)] += model.power(t) * dt;
-    ledger.boundary += model.boundary_power() * dt;
+    // Ledger: the power of each term integrated by the trapezoidal rule between force evaluations.
+    for (Term t : model.terms()) {
+      const auto k = static_cast<std::size_t>(t);
+      ledger.work[k] += 0.5 * (previous_power[k] + model.power(t)) * dt;
+      previous_power[k] = model.power(t);
+    }
+    ledger.boundary += 0.5 * (previous_boundary_power + model.boundary_power()) * dt;
+    previous_boundary_power = model.boundary_power();
     if (model.non_finite_term() != Term::count || !all_finite(integrator.q()) || !all_finite(integrator.v()))
       throw RuntimeError(blame_non_finite(model, integrator, step));
     if (breaking) {

@@ -65,18 +65,30 @@ bool near_line(const Vec2& p, const Vec2& a, const Vec2& d, double d_norm, doubl
   return std::abs(cross(d, p - a)) <= tol * d_norm;
 }
 
+// The edges of a polygon with their lengths, computed once per overlap.
+struct Edges {
+  std::array<Vec2, kMaxContactPolygonVertices> start, dir;
+  std::array<double, kMaxContactPolygonVertices> norm;
+  std::size_t size = 0;
+  explicit Edges(std::span<const Vec2> p) : size(p.size()) {
+    for (std::size_t c = 0; c < size; ++c) {
+      start[c] = p[c];
+      dir[c] = p[c + 1 == size ? 0 : c + 1] - p[c];
+      norm[c] = dir[c].norm();
+    }
+  }
+};
+
 // Edge u -> v of the overlap lies on the boundary of `other` too (u, v within tol of one of its
 // edge lines, same orientation), or is shorter than tol: it then belongs to neither boundary.
-bool shared_edge(const Vec2& u, const Vec2& v, std::span<const Vec2> other, double tol) {
+bool shared_edge(const Vec2& u, const Vec2& v, const Edges& other, double tol) {
   const Vec2 e = v - u;
-  if (e.norm() <= tol) return true;
-  const std::size_t m = other.size();
-  for (std::size_t c = 0; c < m; ++c) {
-    const Vec2& a = other[c];
-    const Vec2 d = other[c + 1 == m ? 0 : c + 1] - a;
+  if (e.squaredNorm() <= tol * tol) return true;
+  for (std::size_t c = 0; c < other.size; ++c) {
+    const Vec2& d = other.dir[c];
     if (e.dot(d) <= 0.0) continue;
-    const double d_norm = d.norm();
-    if (near_line(u, a, d, d_norm, tol) && near_line(v, a, d, d_norm, tol)) return true;
+    const Vec2& a = other.start[c];
+    if (near_line(u, a, d, other.norm[c], tol) && near_line(v, a, d, other.norm[c], tol)) return true;
   }
   return false;
 }
@@ -150,11 +162,12 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   // Shared status of each edge, evaluated on demand: -1 unknown, 0 no, 1 yes.
   std::array<signed char, kMaxOverlapVertices> shared_state;
   shared_state.fill(-1);
+  const Edges edges_i(si), edges_j(sj);
   auto shared = [&](std::size_t e) {
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
       const Vec2& v = P.v[e + 1 == K ? 0 : e + 1];
-      shared_state[e] = shared_edge(u, v, owner_j(e) ? si : sj, eps_len) ? 1 : 0;
+      shared_state[e] = shared_edge(u, v, owner_j(e) ? edges_i : edges_j, eps_len) ? 1 : 0;
     }
     return shared_state[e] == 1;
   };
@@ -235,45 +248,45 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
   return overlap_impl(pi, pj, ci, cj, length_scale, &overlap);
 }
 
-namespace {
-// Whether an edge of `p` separates q from p (all of q's vertices at most `slack` inside the edge's
-// line). Starts with the edge whose outward normal points most along d (usually the shared edge of a
-// tessellation), then tries the others: a full separating-axis test over p's edges, early exit.
-bool edge_of_p_separates(std::span<const Vec2> p, std::span<const Vec2> q, const Vec2& d, double slack) {
+std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d) {
+  // The facing edge is one of the two edges at p's support vertex in direction d.
   const std::size_t n = p.size();
-  std::size_t best = 0;
-  double best_dot = -std::numeric_limits<double>::infinity();
-  for (std::size_t a = 0; a < n; ++a) {
-    const Vec2 e = p[(a + 1) % n] - p[a];
-    const double dot = (e.y() * d.x() - e.x() * d.y()) / std::max(e.norm(), 1e-300);
-    if (dot > best_dot) {
-      best_dot = dot;
-      best = a;
+  std::size_t s = 0;
+  double best = p[0].dot(d);
+  for (std::size_t a = 1; a < n; ++a) {
+    const double h = p[a].dot(d);
+    if (h > best) {
+      best = h;
+      s = a;
     }
   }
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t a = (best + k) % n;
-    const Vec2 e = p[(a + 1) % n] - p[a];
-    const double len = e.norm();
-    if (len == 0) continue;
-    const Vec2 normal(e.y() / len, -e.x() / len);
-    if (k > 0 && normal.dot(d) <= 0) continue;  // an edge facing away from q cannot separate convex q
-    bool separates = true;
-    for (const Vec2& v : q)
-      if (normal.dot(v - p[a]) < -slack) {
-        separates = false;
-        break;
-      }
-    if (separates) return true;
-  }
-  return false;
+  const std::size_t prev = s == 0 ? n - 1 : s - 1;
+  const Vec2 e_out = p[s + 1 == n ? 0 : s + 1] - p[s];  // edge s -> s+1
+  const Vec2 e_in = p[s] - p[prev];                      // edge s-1 -> s
+  const double l_out = e_out.norm(), l_in = e_in.norm();
+  // Outward normal of edge e (counter-clockwise polygon): (e_y, −e_x)/|e|.
+  const double f_out = l_out > 0 ? (e_out.y() * d.x() - e_out.x() * d.y()) / l_out : -1e300;
+  const double f_in = l_in > 0 ? (e_in.y() * d.x() - e_in.x() * d.y()) / l_in : -1e300;
+  return f_out >= f_in ? s : prev;
 }
-}  // namespace
+
+bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack) {
+  const std::size_t n = p.size();
+  if (edge >= n) return false;
+  const Vec2& a = p[edge];
+  const Vec2 e = p[edge + 1 == n ? 0 : edge + 1] - a;
+  const double len = e.norm();
+  if (!(len > 0)) return false;
+  const double limit = -slack * len;
+  for (const Vec2& v : q)
+    if (e.y() * (v.x() - a.x()) - e.x() * (v.y() - a.y()) < limit) return false;
+  return true;
+}
 
 bool separated_by_facing_edge(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
                               double slack) {
   const Vec2 d = cj - ci;
-  return edge_of_p_separates(pi, pj, d, slack) || edge_of_p_separates(pj, pi, -d, slack);
+  return edge_separates(pi, facing_edge(pi, d), pj, slack) || edge_separates(pj, facing_edge(pj, -d), pi, slack);
 }
 
 }  // namespace frac::geometry

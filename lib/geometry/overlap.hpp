@@ -88,5 +88,10 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
 // of an unstressed tessellation touch along a shared edge and are separated by it.
 bool separated_by_facing_edge(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
                               double slack);
+// The parts of that test: the edge of p (index of its first vertex) whose outward normal points most
+// along d, and whether edge `edge` of p separates q from p within `slack`. A neighbour list caches
+// the facing edges of each pair and tests them first.
+std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d);
+bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack);
 
 }  // namespace frac::geometry

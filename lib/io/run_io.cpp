@@ -33,7 +33,9 @@ RunWriter::RunWriter(Group& root, const mesh::NodeMesh& mesh, std::span<const do
 void RunWriter::write_frame(const BodyFrame& f) {
   if (!position_) {
     Group bodies = root_.group(body_group(cells_));
-    Group links = root_.group(link_group(cells_));
+    // The link series sit in a subgroup: the node mesh already has a static `intact` (the notch).
+    Group links_root = root_.group(link_group(cells_));
+    Group links = links_root.create_group("trajectory");
     position_ = std::make_unique<SeriesWriter>(bodies, "position", std::vector<hsize_t>{bodies_, 2}, "m");
     velocity_ = std::make_unique<SeriesWriter>(bodies, "velocity", std::vector<hsize_t>{bodies_, 2}, "m s-1");
     if (cells_) {
@@ -83,7 +85,7 @@ void RunWriter::finish() {
   g.write("time", std::span<const double>(time), {k}, "s");
   g.write("index", std::span<const std::int64_t>(index), {k});
   g.write("mode", std::span<const std::uint8_t>(mode), {k});
-  g.set_attr("mode_meaning", cells_ ? "1 stretching, 2 bending, 3 both" : "1 separation past u_c");
+  g.set_attr("mode_meaning", cells_ ? "1 the stretching term of the breaking rule dominated, 2 the bending term" : "1 separation past u_c");
 }
 
 RunInfo read_run_info(const Group& root) {
@@ -107,7 +109,7 @@ BodyFrame read_frame(const Group& root, long long frame) {
   const RunInfo info = read_run_info(root);
   const bool cells = info.model == "dem";
   const Group bodies = root.group(body_group(cells));
-  const Group links = root.group(link_group(cells));
+  const Group links = root.group(std::string(link_group(cells)) + "/trajectory");
   const auto frames = static_cast<long long>(info.step.size());
   const long long k = frame < 0 ? frames + frame : frame;
   BodyFrame f;

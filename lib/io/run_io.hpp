@@ -7,12 +7,12 @@
 //   DEM:    /particles/cells/{mass [N] kg, inertia [N] kg m^2}
 //           /particles/cells/{position [T,N,2] m, angle [T,N] rad, velocity [T,N,2] m/s,
 //                             angular_velocity [T,N] rad/s}          each {step, time, value}
-//           /connectivity/beams/{intact [T,B] uint8, strain [T,B] 1}  each {step, time, value}
+//           /connectivity/beams/trajectory/{intact [T,B] uint8, strain [T,B] 1}  each {step, time, value}
 //   rubber: /particles/nodes/mass [N] kg
 //           /particles/nodes/{position [T,N,2] m, velocity [T,N,2] m/s}
-//           /connectivity/bonds/{intact [T,B] uint8, strain [T,B] 1}
+//           /connectivity/bonds/trajectory/{intact [T,B] uint8, strain [T,B] 1}
 //   both:   /observables/<name>/{step, time, value}, /observables/beam_breaks (or bond_breaks):
-//           step [K], time [K], index [K], mode [K] (1 stretching, 2 bending, 3 both; rubber: 1)
+//           step [K], time [K], index [K], mode [K] (1 stretching dominated, 2 bending dominated; rubber: 1)
 #include <cstdint>
 #include <memory>
 #include <map>
@@ -41,7 +41,7 @@ struct BreakEvent {
   std::int64_t step;
   double time;
   std::int64_t index;  // beam or bond
-  std::uint8_t mode;   // 1 stretching, 2 bending, 3 both
+  std::uint8_t mode;   // 1 stretching dominated, 2 bending dominated
 };
 
 class RunWriter {

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# dem-run benchmarks. Usage: bench/dem_run.sh [BIN_DIR]   (REPEATS=5, THREADS="1 2")
+# 1. Nanoseconds per cell-step at 10^4 and 10^5 cells, on 1 and 2 threads, for beams only and for the
+#    full model (beams, contacts, damping, friction, breaking): the median wall time of S and 2S steps,
+#    differenced, so set-up (reading, the stability bound) does not count.
+# 2. Wall time and steps of the paper-scale explosion (1100 cells) and impact (800 cells).
+set -euo pipefail
+bin=${1:-build/tools}
+repeats=${REPEATS:-5}
+threads=${THREADS:-"1 2"}
+out=bench/out
+mkdir -p "$out"
+command -v /usr/bin/time >/dev/null || { echo "bench: needs GNU time: apt-get install -y time" >&2; exit 1; }
+scenes=data/scenes
+
+median_wall() {  # median wall seconds of a command over $repeats runs
+  local times=()
+  for ((r = 0; r < repeats; r++)); do
+    /usr/bin/time -f "%e" -o "$out/time.txt" "$@" >/dev/null 2>"$out/stderr.txt" ||
+    { echo "bench: failed: $*" >&2; cat "$out/stderr.txt" >&2; exit 1; }
+    times+=("$(cat "$out/time.txt")")
+  done
+  printf '%s\n' "${times[@]}" | sort -g | sed -n "$((repeats / 2 + 1))p"
+}
+
+beams_only=(--physics.contacts off --physics.breaking off --physics.friction off --physics.damping off)
+full_model=(--physics.contacts on --physics.breaking on --physics.friction on --physics.damping on
+            --material.friction 0.3 --material.gamma_n 1000 --material.gamma_t 1000)
+quiet_output=(--output.frame_interval 1 --output.observe_every 1000000 --stop.t_max 1 --stop.steps_without_breaking 0)
+
+echo "dem-run, median of $repeats, $(nproc) cores, $(date -u +%Y-%m-%d)"
+echo
+echo "| cells | model | threads | steps | ns per cell-step |"
+echo "|---|---|---|---|---|"
+for side in 100 316; do
+  cells=$((side * side))
+  size=$(awk -v n="$side" 'BEGIN { print n * 0.01 }')
+  "$bin/mesh-gen" voronoi --shape rect --size "${size}x${size}" --cells "${side}x${side}" --seed 1 -q -o "$out/dem-mesh.h5"
+  steps=$((side == 100 ? 400 : 40))
+  for model in beams full; do
+    if [[ $model == beams ]]; then extra=("${beams_only[@]}"); else extra=("${full_model[@]}"); fi
+    for t in $threads; do
+      cmd=(env OMP_NUM_THREADS=$t "$bin/dem-run" --scene "$scenes/pulse.ini" "$out/dem-mesh.h5" -q -o "$out/dem-run.h5"
+           "${quiet_output[@]}" "${extra[@]}" --loading.energy 1)
+      a=$(median_wall "${cmd[@]}" --stop.max_steps "$steps")
+      b=$(median_wall "${cmd[@]}" --stop.max_steps "$((2 * steps))")
+      awk -v c="$cells" -v m="$model" -v t="$t" -v s="$steps" -v a="$a" -v b="$b" \
+        'BEGIN { printf "| %d | %s | %s | %d | %.0f |\n", c, m, t, s, (b - a) / (c * s) * 1e9 }'
+    done
+  done
+done
+
+echo
+echo "| paper-scale run | threads | steps | median wall s |"
+echo "|---|---|---|---|"
+"$bin/mesh-gen" voronoi --shape disc --diameter 0.4 --cells 1100 --seed 7 -q -o "$out/disc.h5"
+"$bin/mesh-gen" voronoi --shape rect --size 0.40x0.20 --cells 40x20 --seed 7 -q -o "$out/block.h5"
+for t in $threads; do
+  for run in "explosion disc" "impact block"; do
+    set -- $run
+    w=$(median_wall env OMP_NUM_THREADS=$t "$bin/dem-run" --scene "$scenes/$1.ini" "$out/$2.h5" -q -o "$out/$1.h5")
+    steps=$(h5dump -a /steps "$out/$1.h5" | awk '/\(0\)/ { print $2 }')
+    echo "| $1 | $t | $steps | $w |"
+  done
+done
