@@ -13,7 +13,14 @@ namespace frac::dem {
 double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, const Physics& physics) {
   const Bodies bodies = make_bodies(mesh, material);
   const std::size_t n = bodies.n, nb = mesh.beams();
-  if (n == 0 || nb == 0) return 0.0;
+  // Floor for contacts between cells that are not mesh neighbours (fragments that meet, hand-built
+  // scenes): a pair of equal cells touching along a contact line as long as their equal-area diameter
+  // r, k = Y·h·r/L_c = Y·h, m_eff = m/2, so ω² = 2·Y·h/m for the lightest cell.
+  double floor = 0;
+  if (physics.contacts)
+    for (std::size_t k = 0; k < n; ++k)
+      floor = std::max(floor, std::sqrt(2 * material.grain_modulus * material.thickness / bodies.mass[k]));
+  if (n == 0 || nb == 0) return floor;
   std::vector<double> inv_sqrt_m(3 * n);
   for (std::size_t k = 0; k < n; ++k) {
     inv_sqrt_m[k] = inv_sqrt_m[n + k] = 1.0 / std::sqrt(bodies.mass[k]);
@@ -85,7 +92,7 @@ double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, 
     x.swap(y);
     if (it > 20 && std::abs(lambda - previous) < 1e-6 * lambda) break;
   }
-  return std::sqrt(std::max(lambda, 0.0)) * 1.02;
+  return std::max(floor, std::sqrt(std::max(lambda, 0.0)) * 1.02);
 }
 
 TimeStep choose_time_step(const mesh::CellMesh& mesh, const Material& material, const Physics& physics,

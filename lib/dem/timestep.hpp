@@ -5,6 +5,8 @@
 // beam (axial, shear and bending, Timoshenko) and, when contacts are on, the overlap stiffness
 // Y·h·S/L_c of every touching pair (compression engages both). ω_max comes from power iteration on
 // M^{-1/2} K M^{-1/2}, which converges from below; the result is raised by 2% to cover the residual.
+// With contacts on, ω_max is at least √(2·Y·h/m) of the lightest cell (two cells meeting along a
+// contact line of their own size, whether or not they are mesh neighbours).
 #include "dem/material.hpp"
 #include "dynamics/integrator.hpp"
 #include "mesh/cell_mesh.hpp"

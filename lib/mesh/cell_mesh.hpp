@@ -43,4 +43,11 @@ struct CellMesh {
   std::vector<Vec2> world_polygon(std::size_t k) const;
 };
 
+// A mesh from polygons given in world coordinates (counter-clockwise) and beams given as cell pairs
+// with their sections: centroids, areas, second moments and body-frame vertices computed here, beam
+// lengths from the centroids. For hand-built scenes (tests, hard cases); spacing g = `spacing`.
+CellMesh make_cell_mesh(const std::vector<std::vector<Vec2>>& polygons,
+                        const std::vector<std::array<std::int64_t, 2>>& beams, const std::vector<double>& sections,
+                        double spacing);
+
 }  // namespace frac::mesh
