@@ -58,6 +58,15 @@ int main(int argc, char** argv) {
     run.parameters.emplace_back("derived.dt", std::to_string(sim.time_step.dt));
     run.parameters.emplace_back("derived.dt_bound", std::to_string(sim.time_step.bound));
     run.parameters.emplace_back("derived.omega_max", std::to_string(sim.time_step.omega_max));
+    const dem::KickReport kick = dem::kick_report(sim);
+    if (kick.cells > 0) {
+      run.parameters.emplace_back("derived.kick_cells", std::to_string(kick.cells));
+      run.parameters.emplace_back("derived.kick_kinetic_energy", std::to_string(kick.kinetic_energy));
+      run.parameters.emplace_back("derived.kick_mean_speed", std::to_string(kick.mean_speed));
+      std::ostringstream m;
+      m << kick.momentum_over_scale;
+      run.parameters.emplace_back("derived.kick_momentum_over_scale", m.str());
+    }
     io::add_input(run, in);
     io::OutputFile out(common.output);
     io::write_header(out.root(), "run", run, out.uuid());

@@ -1,5 +1,7 @@
 #include "dem/simulation.hpp"
 
+#include <cmath>
+
 namespace frac::dem {
 
 Simulation::Simulation(const mesh::CellMesh& mesh, const DemScene& s)
@@ -14,6 +16,29 @@ Simulation::Simulation(const mesh::CellMesh& mesh, const DemScene& s)
   time_step = choose_time_step(mesh, s.material, s.physics, s.integrator.kind, s.integrator.dt, s.integrator.safety,
                                s.integrator.allow_unstable);
   integrator = dynamics::make_integrator(s.integrator.kind);
+}
+
+KickReport kick_report(const Simulation& sim) {
+  KickReport r;
+  const std::size_t n = sim.model.bodies().n;
+  const auto& m = sim.model.bodies().mass;
+  double px = 0, py = 0, scale = 0, speed = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double vx = sim.v0[k], vy = sim.v0[n + k];
+    const double v = std::hypot(vx, vy);
+    if (v == 0) continue;
+    ++r.cells;
+    px += m[k] * vx;
+    py += m[k] * vy;
+    scale += m[k] * v;
+    speed += v;
+    r.kinetic_energy += 0.5 * m[k] * v * v;
+  }
+  if (r.cells > 0) {
+    r.mean_speed = speed / static_cast<double>(r.cells);
+    r.momentum_over_scale = std::hypot(px, py) / scale;
+  }
+  return r;
 }
 
 }  // namespace frac::dem

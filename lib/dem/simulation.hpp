@@ -25,4 +25,12 @@ struct Simulation {
   }
 };
 
+// The initial kick of an explosion, pulse or impact (validation B1-B3 of the physics note): how many
+// cells move, their kinetic energy (J), their mean speed (m/s), and |Σ m v| / Σ m |v| (0 to round-off).
+struct KickReport {
+  std::size_t cells = 0;
+  double kinetic_energy = 0, mean_speed = 0, momentum_over_scale = 0;
+};
+KickReport kick_report(const Simulation& sim);
+
 }  // namespace frac::dem

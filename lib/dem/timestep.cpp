@@ -10,6 +10,81 @@
 
 namespace frac::dem {
 
+namespace {
+// Largest eigenvalue of a symmetric positive semidefinite operator by power iteration from a fixed
+// pseudo-random start (every mode present); converges from below.
+template <class Apply>
+double largest_eigenvalue(std::size_t size, const Apply& apply) {
+  std::vector<double> x(size), y(size);
+  std::uint64_t s = 0x9e3779b97f4a7c15ULL;
+  for (auto& v : x) {
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    v = static_cast<double>(s >> 11) * 0x1.0p-53 - 0.5;
+  }
+  double lambda = 0;
+  for (int it = 0; it < 400; ++it) {
+    double norm = 0;
+    for (double v : x) norm += v * v;
+    norm = std::sqrt(norm);
+    if (norm == 0) return 0.0;
+    for (double& v : x) v /= norm;
+    apply(x, y);
+    double r = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) r += x[k] * y[k];
+    const double previous = lambda;
+    lambda = r;
+    x.swap(y);
+    if (it > 20 && std::abs(lambda - previous) < 1e-6 * lambda) break;
+  }
+  return std::max(lambda, 0.0);
+}
+
+std::vector<double> inverse_sqrt_masses(const Bodies& bodies) {
+  const std::size_t n = bodies.n;
+  std::vector<double> w(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    w[k] = w[n + k] = 1.0 / std::sqrt(bodies.mass[k]);
+    w[2 * n + k] = 1.0 / std::sqrt(bodies.inertia[k]);
+  }
+  return w;
+}
+}  // namespace
+
+double max_damping_rate(const mesh::CellMesh& mesh, const Material& material, const Physics& physics) {
+  const double gn = physics.damping ? material.gamma_n : 0.0;
+  const double gt = physics.friction ? material.gamma_t : 0.0;
+  if (!physics.contacts || (gn == 0 && gt == 0) || mesh.beams() == 0) return 0.0;
+  const Bodies bodies = make_bodies(mesh, material);
+  const std::size_t n = bodies.n;
+  const auto w = inverse_sqrt_masses(bodies);
+  const double lambda = largest_eigenvalue(3 * n, [&](const std::vector<double>& x, std::vector<double>& y) {
+    std::fill(y.begin(), y.end(), 0.0);
+    for (std::size_t b = 0; b < mesh.beams(); ++b) {
+      const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
+      const auto d = mesh.centroid[j] - mesh.centroid[i];
+      const double l = d.norm(), ex = d.x() / l, ey = d.y() / l, h = 0.5 * l;
+      const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
+      // Velocities of i and j at the midpoint R = c_i + (l/2)e, from u = M^{-1/2} x.
+      const double vxi = x[i] * w[i], vyi = x[n + i] * w[n + i], oi = x[2 * n + i] * w[2 * n + i];
+      const double vxj = x[j] * w[j], vyj = x[n + j] * w[n + j], oj = x[2 * n + j] * w[2 * n + j];
+      const double rel_n = (vxj - vxi) * ex + (vyj - vyi) * ey;
+      const double rel_t = -(vxj - vxi) * ey + (vyj - vyi) * ex - h * (oi + oj);
+      const double fn = m_eff * gn * rel_n, ft = m_eff * gt * rel_t;  // force on i along e and t
+      const double fx = fn * ex - ft * ey, fy = fn * ey + ft * ex;
+      const double torque = h * ft;  // (R − c_i) × F_i = (l/2) F_t, and the same on j
+      y[i] -= fx * w[i];
+      y[n + i] -= fy * w[n + i];
+      y[j] += fx * w[j];
+      y[n + j] += fy * w[n + j];
+      y[2 * n + i] -= torque * w[2 * n + i];
+      y[2 * n + j] -= torque * w[2 * n + j];
+    }
+  });
+  return lambda * 1.02;
+}
+
 double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, const Physics& physics) {
   const Bodies bodies = make_bodies(mesh, material);
   const std::size_t n = bodies.n, nb = mesh.beams();
@@ -21,11 +96,7 @@ double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, 
     for (std::size_t k = 0; k < n; ++k)
       floor = std::max(floor, std::sqrt(2 * material.grain_modulus * material.thickness / bodies.mass[k]));
   if (n == 0 || nb == 0) return floor;
-  std::vector<double> inv_sqrt_m(3 * n);
-  for (std::size_t k = 0; k < n; ++k) {
-    inv_sqrt_m[k] = inv_sqrt_m[n + k] = 1.0 / std::sqrt(bodies.mass[k]);
-    inv_sqrt_m[2 * n + k] = 1.0 / std::sqrt(bodies.inertia[k]);
-  }
+  const auto inv_sqrt_m = inverse_sqrt_masses(bodies);
   struct Pair {
     std::size_t i, j;
     double ex, ey, l0, axial;
@@ -69,29 +140,7 @@ double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, 
     }
     for (std::size_t k = 0; k < 3 * n; ++k) y[k] *= inv_sqrt_m[k];
   };
-  std::vector<double> x(3 * n), y(3 * n);
-  std::uint64_t s = 0x9e3779b97f4a7c15ULL;
-  for (auto& v : x) {  // deterministic start with every mode present
-    s ^= s << 13;
-    s ^= s >> 7;
-    s ^= s << 17;
-    v = static_cast<double>(s >> 11) * 0x1.0p-53 - 0.5;
-  }
-  double lambda = 0;
-  for (int it = 0; it < 400; ++it) {
-    double norm = 0;
-    for (double v : x) norm += v * v;
-    norm = std::sqrt(norm);
-    if (norm == 0) return 0.0;
-    for (double& v : x) v /= norm;
-    apply(x, y);
-    double r = 0;
-    for (std::size_t k = 0; k < x.size(); ++k) r += x[k] * y[k];
-    const double previous = lambda;
-    lambda = r;
-    x.swap(y);
-    if (it > 20 && std::abs(lambda - previous) < 1e-6 * lambda) break;
-  }
+  const double lambda = largest_eigenvalue(3 * n, apply);
   return std::max(floor, std::sqrt(std::max(lambda, 0.0)) * 1.02);
 }
 
@@ -99,8 +148,11 @@ TimeStep choose_time_step(const mesh::CellMesh& mesh, const Material& material, 
                           dynamics::IntegratorKind kind, double dt_requested, double safety, bool allow_unstable) {
   TimeStep ts{};
   ts.omega_max = max_eigenfrequency(mesh, material, physics);
+  ts.gamma_max = max_damping_rate(mesh, material, physics);
   const double limit = dynamics::stability_limit(kind);
+  const double damping = dynamics::damping_limit(kind);
   ts.bound = ts.omega_max > 0 ? limit / ts.omega_max : 1e-3;
+  if (ts.gamma_max > 0) ts.bound = std::min(ts.bound, damping / ts.gamma_max);
   if (dt_requested <= 0) {
     ts.dt = safety * ts.bound;
   } else {
@@ -109,8 +161,9 @@ TimeStep choose_time_step(const mesh::CellMesh& mesh, const Material& material, 
       std::ostringstream msg;
       msg.precision(3);
       msg << "integrator.dt = " << dt_requested << " s is above the stability bound " << ts.bound << " s of "
-          << dynamics::name(kind) << " (ω_max = " << ts.omega_max << " rad/s, ω·dt ≤ " << limit
-          << "); use a smaller dt, dt = auto, or integrator.allow_unstable = on";
+          << dynamics::name(kind) << " (ω_max = " << ts.omega_max << " rad/s, ω·dt ≤ " << limit;
+      if (ts.gamma_max > 0) msg << "; damping rate γ_max = " << ts.gamma_max << " 1/s, γ·dt ≤ " << damping;
+      msg << "); use a smaller dt, dt = auto, or integrator.allow_unstable = on";
       throw UsageError(msg.str());
     }
   }

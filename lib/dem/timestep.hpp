@@ -15,10 +15,17 @@ namespace frac::dem {
 
 double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, const Physics& physics);
 
+// The largest damping rate of the sample (s^-1): the dashpots of normal damping m_eff·γ_N (along the
+// line of centres) and of the viscous friction m_eff·γ_T (across it, at the contact point, so it drives
+// rotation too) on every touching pair, as the largest eigenvalue of M^{-1/2} C M^{-1/2}. 0 when both
+// damping and friction are off.
+double max_damping_rate(const mesh::CellMesh& mesh, const Material& material, const Physics& physics);
+
 struct TimeStep {
-  double dt;        // s
-  double bound;     // s, the stability bound limit/ω_max
-  double omega_max; // rad/s
+  double dt;          // s
+  double bound;       // s, min(limit/ω_max, damping_limit/γ_max)
+  double omega_max;   // rad/s
+  double gamma_max;   // s^-1
 };
 
 // dt_requested <= 0 means auto: safety × bound. A requested step above the bound is refused

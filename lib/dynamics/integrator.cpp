@@ -16,9 +16,12 @@ IntegratorKind parse_integrator_kind(std::string_view name, std::string_view opt
 std::string_view name(IntegratorKind kind) { return kind == IntegratorKind::gear5 ? "gear5" : "verlet"; }
 
 double stability_limit(IntegratorKind kind) {
-  // Measured on ẍ = −ω²x by bisection over 10^5 steps (tests/unit/test_integrator.cpp re-measures them).
-  return kind == IntegratorKind::gear5 ? 0.36 : 2.0;
+  // Largest ω·dt with spectral radius ≤ 1 of the step on ẍ = −ω²x: gear5 (c0 = 3/16) 0.3130, rounded
+  // down; Verlet 2 (tests/unit/test_integrator.cpp re-measures both).
+  return kind == IntegratorKind::gear5 ? 0.31 : 2.0;
 }
+
+double damping_limit(IntegratorKind kind) { return kind == IntegratorKind::gear5 ? 0.16 : 1.0; }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
   if (kind == IntegratorKind::gear5) return std::make_unique<Gear5>();

@@ -39,6 +39,9 @@ std::string_view name(IntegratorKind kind);
 // The largest ω·dt for which the scheme stays stable on an undamped harmonic oscillator ẍ = −ω²x
 // (measured by tests/unit/test_integrator.cpp). The time-step check divides it by ω_max.
 double stability_limit(IntegratorKind kind);
+// The largest γ·dt for which the scheme stays stable on a pure dashpot ẍ = −γẋ (gear5 0.163, Verlet 1,
+// measured by tests/unit/test_integrator.cpp). Damping and friction add this second bound.
+double damping_limit(IntegratorKind kind);
 
 class Integrator {
  public:

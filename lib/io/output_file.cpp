@@ -15,42 +15,6 @@
 namespace frac::io {
 namespace {
 
-// Temporary files to remove if the process is interrupted (SIGINT, SIGTERM, SIGHUP).
-// A fixed table of C strings: the handler may only call async-signal-safe functions.
-constexpr int kMaxTemps = 16;
-char g_temps[kMaxTemps][4096];
-volatile std::sig_atomic_t g_used[kMaxTemps];
-
-extern "C" void remove_temps_and_reraise(int sig) {
-  for (int k = 0; k < kMaxTemps; ++k)
-    if (g_used[k]) unlink(g_temps[k]);
-  std::signal(sig, SIG_DFL);
-  std::raise(sig);
-}
-
-void install_handlers() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_temps_and_reraise);
-  });
-}
-
-void register_temp(const std::string& path) {
-  install_handlers();
-  for (int k = 0; k < kMaxTemps; ++k) {
-    if (!g_used[k] && path.size() < sizeof g_temps[k]) {
-      std::memcpy(g_temps[k], path.c_str(), path.size() + 1);
-      g_used[k] = 1;
-      return;
-    }
-  }
-}
-
-void unregister_temp(const std::string& path) {
-  for (int k = 0; k < kMaxTemps; ++k)
-    if (g_used[k] && path == g_temps[k]) g_used[k] = 0;
-}
-
 Hid file_access(bool in_memory) {
   Hid fapl(H5Pcreate(H5P_FILE_ACCESS));
   // Strong close: closing the file closes every object still open in it, so commit() can rename.
@@ -71,19 +35,10 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), uuid_(make_uu
     file_ = Hid(H5Fcreate(("stdout-" + uuid_ + ".h5").c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()));
     if (file_.get() < 0) throw RuntimeError("-: cannot create the in-memory HDF5 file");
   } else {
-    const std::filesystem::path target(path_);
-    const auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
-      throw UsageError(path_ + ": folder '" + dir.string() + "' does not exist");
-    temp_ = (dir / ("." + target.filename().string() + ".tmp-" + uuid_.substr(0, 8))).string();
-    register_temp(temp_);
+    atomic_ = std::make_unique<AtomicFile>(path_);
     Hid fapl = file_access(false);
-    file_ = Hid(H5Fcreate(temp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
-    if (file_.get() < 0) {
-      unregister_temp(temp_);
-      throw RuntimeError(path_ + ": cannot create file (permission or disk space?)");
-    }
+    file_ = Hid(H5Fcreate(atomic_->path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
+    if (file_.get() < 0) throw RuntimeError(path_ + ": cannot create file (permission or disk space?)");
   }
   root_.emplace(Hid(H5Gopen2(file_.get(), "/", H5P_DEFAULT)), path_, "/");
 }
@@ -91,11 +46,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), uuid_(make_uu
 OutputFile::~OutputFile() {
   if (committed_) return;
   root_.reset();
-  file_.reset();
-  if (!temp_.empty()) {
-    std::remove(temp_.c_str());
-    unregister_temp(temp_);
-  }
+  file_.reset();  // closed before ~AtomicFile removes the temporary file
 }
 
 void OutputFile::commit() {
@@ -114,10 +65,7 @@ void OutputFile::commit() {
   } else {
     root_.reset();
     if (H5Fclose(file_.release()) < 0) throw RuntimeError(path_ + ": cannot finish writing the file");
-    std::error_code ec;
-    std::filesystem::rename(temp_, path_, ec);
-    if (ec) throw RuntimeError(path_ + ": cannot move the finished file into place: " + ec.message());
-    unregister_temp(temp_);
+    atomic_->commit();
   }
   committed_ = true;
 }

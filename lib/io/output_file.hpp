@@ -6,6 +6,9 @@
 #include <optional>
 #include <string>
 
+#include <memory>
+
+#include "io/atomic_file.hpp"
 #include "io/hdf5.hpp"
 
 namespace frac::io {
@@ -28,7 +31,7 @@ class OutputFile {
 
  private:
   std::string path_;
-  std::string temp_;  // temporary name ("" for standard output)
+  std::unique_ptr<AtomicFile> atomic_;  // the temporary file (none for standard output)
   std::string uuid_;
   Hid file_;
   std::optional<Group> root_;

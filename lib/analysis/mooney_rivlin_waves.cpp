@@ -1,0 +1,136 @@
+#include "analysis/mooney_rivlin_waves.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace frac::analysis {
+namespace {
+
+double root_or_nan(double c2) { return c2 > 0 ? std::sqrt(c2) : std::numeric_limits<double>::quiet_NaN(); }
+
+std::string number(double v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
+}  // namespace
+
+void validate(const MooneyRivlin& m, Stretch s) {
+  if (!(m.a > 0) || !std::isfinite(m.a)) throw UsageError("--a: a must be a positive velocity squared, got " + number(m.a));
+  if (!std::isfinite(m.b)) throw UsageError("--b: b must be finite");
+  if (!(m.density > 0) || !std::isfinite(m.density))
+    throw UsageError("--density: the density must be positive, got " + number(m.density));
+  if (!(s.x > 0) || !(s.y > 0) || !std::isfinite(s.x) || !std::isfinite(s.y))
+    throw UsageError("--stretch: expected two positive extension ratios, got " + number(s.x) + "x" + number(s.y));
+}
+
+MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direction) {
+  validate(m, s);
+  const double nx = std::cos(direction), ny = std::sin(direction);
+  // |F^T n|^2 with F = diag(lx, ly).
+  const double ftn2 = s.x * s.x * nx * nx + s.y * s.y * ny * ny;
+  const double j = s.x * s.y;
+  MrWaveSpeeds out;
+  out.direction = direction;
+  out.stretch_along = std::sqrt(ftn2);
+  out.shear = root_or_nan(m.a * (1 - m.b / 2) * ftn2);
+  out.longitudinal = root_or_nan(m.a * ((1 - m.b / 2) * ftn2 + (m.b / 2) * j * j));
+  out.shear_reference = out.shear / out.stretch_along;
+  out.longitudinal_reference = out.longitudinal / out.stretch_along;
+  return out;
+}
+
+MrStress mooney_rivlin_stress(const MooneyRivlin& m, Stretch s) {
+  validate(m, s);
+  MrStress out;
+  out.piola_xx = m.density * m.a * s.x * (1 + (m.b / 2) * (s.y * s.y - 1));
+  out.piola_yy = m.density * m.a * s.y * (1 + (m.b / 2) * (s.x * s.x - 1));
+  out.cauchy_xx = out.piola_xx / s.y;
+  out.cauchy_yy = out.piola_yy / s.x;
+  return out;
+}
+
+std::string_view name(LatticeRegime r) {
+  switch (r) {
+    case LatticeRegime::mooney_rivlin: return "mooney-rivlin";
+    case LatticeRegime::short_bonds: return "short-bonds";
+    case LatticeRegime::near_cutoff: return "near-cutoff";
+    case LatticeRegime::broken: return "broken";
+    case LatticeRegime::unchecked: return "unchecked";
+  }
+  return "unchecked";
+}
+
+LatticeCheck check_lattice(const LatticeParameters& p, Stretch s) {
+  if (p.rows_along != "x" && p.rows_along != "y")
+    throw UsageError("--rows-along: expected x or y, got '" + p.rows_along + "'");
+  if (!(s.x > 0) || !(s.y > 0)) throw UsageError("--stretch: the extension ratios must be positive");
+  LatticeCheck out;
+  if (!(p.spacing > 0)) {
+    out.message = "lattice spacing unknown: the bond lengths were not checked";
+    return out;
+  }
+  // Reference bond directions: 0, 60, 120 degrees with rows along x; 90, 30, 150 with rows along y.
+  const double deg = std::numbers::pi / 180;
+  const std::array<double, 3> angles =
+      p.rows_along == "x" ? std::array<double, 3>{0.0, 60 * deg, 120 * deg} : std::array<double, 3>{90 * deg, 30 * deg, 150 * deg};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double dx = std::cos(angles[k]) * s.x, dy = std::sin(angles[k]) * s.y;
+    out.families[k] = {angles[k], p.spacing * std::hypot(dx, dy)};
+  }
+  const auto family = [&](std::size_t k) {
+    return "the bonds at " + number(out.families[k].reference_angle / deg) + " deg (reference) are " +
+           number(out.families[k].length / p.spacing) + " Delta long";
+  };
+  std::size_t shortest = 0, longest = 0;
+  for (std::size_t k = 1; k < 3; ++k) {
+    if (out.families[k].length < out.families[shortest].length) shortest = k;
+    if (out.families[k].length > out.families[longest].length) longest = k;
+  }
+  const double u_min = out.families[shortest].length, u_max = out.families[longest].length;
+  const std::string at = "at stretch " + number(s.x) + "x" + number(s.y) + " with rows along " + p.rows_along + ", ";
+
+  if (p.cutoff > 0 && u_max >= p.cutoff) {
+    out.regime = LatticeRegime::broken;
+    out.message = at + family(longest) + ", at or beyond the cut-off u_c = " + number(p.cutoff / p.spacing) +
+                  " Delta: the lattice is not Mooney-Rivlin (bonds fail)";
+    return out;
+  }
+  if (p.short_width >= 0 && u_min < p.spacing + p.short_width) {
+    out.regime = LatticeRegime::short_bonds;
+    out.message = at + family(shortest) + ", shorter than Delta + u_s = " + number(1 + p.short_width / p.spacing) +
+                  " Delta (branch 1 of the pair term): the lattice is not Mooney-Rivlin at this stretch "
+                  "(physics/rubber-lattice.md §4); turn the lattice (rows along the other axis) or stretch more";
+    return out;
+  }
+  if (p.cutoff > 0 && p.cutoff_width >= 0 && p.cutoff - u_max < kCutoffClearance * p.cutoff_width) {
+    out.regime = LatticeRegime::near_cutoff;
+    out.message = at + family(longest) + ", only " + number((p.cutoff - u_max) / std::max(p.cutoff_width, 1e-300)) +
+                  " cut-off widths below u_c = " + number(p.cutoff / p.spacing) + " Delta (at least " +
+                  number(kCutoffClearance) +
+                  " needed): the cut-off stiffens the far field, the lattice is not Mooney-Rivlin "
+                  "(rubber-lattice-validation.md §D)";
+    return out;
+  }
+  if (p.short_width < 0) {
+    out.message = at + "the short-bond width u_s is unknown: the branch-1 condition (every bond longer than "
+                  "Delta + u_s) was not checked; shortest bonds " + number(u_min / p.spacing) + " Delta";
+    return out;
+  }
+  out.regime = LatticeRegime::mooney_rivlin;
+  out.message = at + "every bond is in branch 2 (" + number(u_min / p.spacing) + " to " + number(u_max / p.spacing) +
+                " Delta, above Delta + u_s = " + number(1 + p.short_width / p.spacing) + " Delta" +
+                (p.cutoff > 0 && p.cutoff_width >= 0
+                     ? ", at least " + number(kCutoffClearance) + " cut-off widths below u_c"
+                     : std::string(p.cutoff > 0 ? ", below u_c" : ", cut-off not checked")) +
+                ")";
+  return out;
+}
+
+}  // namespace frac::analysis

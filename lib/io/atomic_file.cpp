@@ -1,0 +1,108 @@
+#include "io/atomic_file.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace frac::io {
+namespace {
+
+// Temporary files to remove if the process is interrupted. A fixed table of C strings: the handler
+// may only call async-signal-safe functions.
+constexpr int kMaxTemps = 16;
+char g_temps[kMaxTemps][4096];
+volatile std::sig_atomic_t g_used[kMaxTemps];
+
+extern "C" void remove_temps_and_reraise(int sig) {
+  for (int k = 0; k < kMaxTemps; ++k)
+    if (g_used[k]) unlink(g_temps[k]);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+void register_temp(const std::string& path) {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_temps_and_reraise);
+  });
+  for (int k = 0; k < kMaxTemps; ++k) {
+    if (!g_used[k] && path.size() < sizeof g_temps[k]) {
+      std::memcpy(g_temps[k], path.c_str(), path.size() + 1);
+      g_used[k] = 1;
+      return;
+    }
+  }
+}
+
+void unregister_temp(const std::string& path) {
+  for (int k = 0; k < kMaxTemps; ++k)
+    if (g_used[k] && path == g_temps[k]) g_used[k] = 0;
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
+  if (target_.empty()) throw UsageError("--output: empty file name");
+  const std::filesystem::path t(target_);
+  const auto dir = t.has_parent_path() ? t.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw UsageError(target_ + ": folder '" + dir.string() + "' does not exist");
+  if (t.filename().empty() || std::filesystem::is_directory(t, ec))
+    throw UsageError(target_ + ": is a folder, not a file name");
+  std::string name = (dir / ("." + t.filename().string() + ".tmp-XXXXXX")).string();
+  std::vector<char> buf(name.begin(), name.end());
+  buf.push_back('\0');
+  const int fd = mkstemp(buf.data());
+  if (fd < 0) throw RuntimeError(target_ + ": cannot create a file in '" + dir.string() + "' (" + std::strerror(errno) + ")");
+  close(fd);
+  temp_ = buf.data();
+  register_temp(temp_);
+}
+
+AtomicFile::~AtomicFile() {
+  if (committed_) return;
+  std::error_code ec;
+  std::filesystem::remove(temp_, ec);
+  unregister_temp(temp_);
+}
+
+void AtomicFile::commit() {
+  if (committed_) return;
+  std::error_code ec;
+  // mkstemp makes the file 0600; give it the permissions a new file normally gets.
+  const mode_t mask = umask(0);
+  umask(mask);
+  std::filesystem::permissions(temp_, static_cast<std::filesystem::perms>(0666 & ~mask), ec);
+  std::filesystem::rename(temp_, target_, ec);
+  if (ec) throw RuntimeError(target_ + ": cannot move the finished file into place: " + ec.message());
+  unregister_temp(temp_);
+  committed_ = true;
+}
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
+      throw RuntimeError("-: cannot write to standard output (" + std::string(std::strerror(errno)) + ")");
+    return;
+  }
+  AtomicFile file(path);
+  {
+    std::FILE* f = std::fopen(file.path().c_str(), "wb");
+    if (!f) throw RuntimeError(path + ": cannot write the file (" + std::string(std::strerror(errno)) + ")");
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok) throw RuntimeError(path + ": cannot write the file (disk full or no permission?)");
+  }
+  file.commit();
+}
+
+}  // namespace frac::io

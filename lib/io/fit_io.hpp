@@ -1,0 +1,62 @@
+#pragma once
+// powerlaw-fit's file formats: the values to fit (a /fragments file, or a plain column of numbers) and the
+// fit itself (the /fit group of an HDF5 file of kind "fit", or "key value" lines for shell scripts).
+// Layout and keys: docs/powerlaw-fit.md.
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "analysis/powerlaw.hpp"
+#include "io/hdf5.hpp"
+
+namespace frac::io {
+
+// The values to fit and where they came from.
+struct FitInput {
+  std::vector<double> values;
+  std::string source;   // "values.txt", "-", "fragments.h5:/fragments/mass"
+  std::string column;   // "mass" or "cell_count" for a fragments file, "" for text
+  std::string unit;     // "kg", "1", or "" (unknown, text input)
+  std::int64_t n_read = 0;                 // values read before any filter
+  std::int64_t n_excluded_min_cells = 0;   // fragments below --min-cells (reported, never silent)
+  std::int64_t min_cells = 0;              // the --min-cells filter applied (0: none)
+  std::int64_t fragments_min_cells = -1;   // min_cells attribute of the fragments file (-1: none)
+};
+
+// One number a line; blank lines and '#' comments skipped. InputError naming `name`, the number of bad lines
+// and the first of them, for a line that is not a single number. NaN and infinities are read as such
+// (validate_values refuses them, with counts).
+std::vector<double> read_number_column(std::istream& in, const std::string& name);
+// A text file, or "-" for standard input.
+FitInput read_text_values(const std::string& path);
+
+// /fragments/<column> (mass or cell_count) of a file of kind "fragments"; with min_cells > 0, only fragments
+// of at least that many cells (the number left out is reported).
+FitInput read_fragment_values(const Group& root, const std::string& column, std::int64_t min_cells = 0);
+// The min_cells attribute of /fragments (what fragment-count was asked to leave out of its histogram), 0 when
+// absent. Checks the header (kind "fragments") and that /fragments exists.
+std::int64_t fragments_min_cells(const Group& root);
+
+// Does `path` ("-": standard input, peeked without consuming it) hold an HDF5 file? InputError when the file
+// is missing or standard input is empty.
+bool input_is_hdf5(const std::string& path);
+
+// Writes the /fit group (the header is the caller's: write_header(root, "fit", ...)).
+void write_fit(Group& root, const analysis::FitReport& report, const FitInput& input);
+// Reads a /fit group back: estimators (fit, bootstrap and goodness-of-fit numbers), comparisons, histogram
+// and log-binned slope. InputError when the group is missing.
+analysis::FitReport read_fit(const Group& root);
+
+// "key value" lines (docs/powerlaw-fit.md lists every key).
+void write_fit_text(std::ostream& out, const analysis::FitReport& report, const FitInput& input);
+// Writes text to `path` atomically (temporary file renamed into place), or to standard output for "-".
+void write_text_output(const std::string& path, const std::string& text);
+
+// Appends the values of `one` to `pooled` (the sample of several files): sources joined with " + ",
+// counts added; the unit and column must agree (InputError otherwise).
+void pool_into(FitInput& pooled, const FitInput& one);
+// The log-binned density histogram as CSV: center,density,count,lower,upper (header line first).
+void write_histogram_csv(std::ostream& out, const analysis::FitReport& report);
+
+}  // namespace frac::io

@@ -1,0 +1,298 @@
+#include "rubber/forces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <variant>
+
+
+namespace frac::rubber {
+namespace {
+
+// The six slots of node i as seen from i: bond vector a (from i to the neighbour), h, h'/u, f'/u.
+struct Slots {
+  double ax[6], ay[6], h[6], hpu[6], fpu[6];
+};
+
+inline void load_slots(const ForceContext& c, std::size_t i, Slots& s) {
+  const BondData* bd = c.bond;
+  for (int k = 0; k < 3; ++k) {
+    const BondData& d = bd[3 * i + static_cast<std::size_t>(k)];
+    s.ax[k] = d.bx;
+    s.ay[k] = d.by;
+    s.h[k] = d.h;
+    s.hpu[k] = d.hpu;
+    s.fpu[k] = d.fpu;
+  }
+  for (int k = 3; k < 6; ++k) {
+    const auto j = static_cast<std::size_t>(c.nbr[6 * i + static_cast<std::size_t>(k)]);
+    const BondData& d = bd[3 * j + static_cast<std::size_t>(k - 3)];
+    s.ax[k] = -d.bx;
+    s.ay[k] = -d.by;
+    s.h[k] = d.h;
+    s.hpu[k] = d.hpu;
+    s.fpu[k] = d.fpu;
+  }
+}
+
+// Three-body energy T_i and the derivatives D(i,s) (pair term included) for a quadratic g, through the
+// moments of the neighbour vectors. With Energy, only T is computed.
+template <bool Energy, class G>
+inline double centre_moments(const G& g, const Slots& s, double* D) {
+  double H1 = 0, H2 = 0, Sx = 0, Sy = 0, Mxx = 0, Mxy = 0, Myy = 0, P2 = 0, P4 = 0;
+  for (int k = 0; k < 6; ++k) {
+    const double h = s.h[k], ax = s.ax[k], ay = s.ay[k];
+    const double hx = h * ax, hy = h * ay;
+    const double r2 = ax * ax + ay * ay;
+    const double q = h * h * r2;
+    H1 += h;
+    H2 += h * h;
+    Sx += hx;
+    Sy += hy;
+    Mxx += hx * ax;
+    Mxy += hx * ay;
+    Myy += hy * ay;
+    P2 += q;
+    P4 += q * r2;
+  }
+  const double c2 = g.c2, c1 = g.c1, c0 = g.c0;
+  if constexpr (Energy) {
+    return c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
+  } else {
+    const double c2_4 = 4 * c2, c1_2 = 2 * c1;
+    for (int k = 0; k < 6; ++k) {
+      const double h = s.h[k], ax = s.ax[k], ay = s.ay[k];
+      const double r2 = ax * ax + ay * ay;
+      const double Max = Mxx * ax + Mxy * ay, May = Mxy * ax + Myy * ay;
+      const double aMa = ax * Max + ay * May, Sa = Sx * ax + Sy * ay;
+      const double hr2 = h * r2;
+      // ∂T/∂a at fixed h, then the chain rule through h(|a|) along a (h' â = (h'/u) a), plus f' â.
+      const double coef = 2 * (c2 * (aMa - hr2 * r2) + c1 * (Sa - hr2) + c0 * (H1 - h));
+      const double along = coef * s.hpu[k] + s.fpu[k];
+      D[2 * k] = h * (c2_4 * (Max - hr2 * ax) + c1_2 * (Sx - h * ax)) + along * ax;
+      D[2 * k + 1] = h * (c2_4 * (May - hr2 * ay) + c1_2 * (Sy - h * ay)) + along * ay;
+    }
+    return 0;
+  }
+}
+
+// The same by the loop over the 15 unordered pairs of slots (30 ordered pairs): any g.
+template <bool Energy, class G>
+inline double centre_pairs(const G& g, const Slots& s, double* D) {
+  double S1[6] = {}, S2x[6] = {}, S2y[6] = {};
+  double T = 0;
+  for (int j = 0; j < 6; ++j)
+    for (int k = j + 1; k < 6; ++k) {
+      const double X = s.ax[j] * s.ax[k] + s.ay[j] * s.ay[k];
+      const VD gv = g(X);
+      T += 2 * s.h[j] * s.h[k] * gv.v;
+      if constexpr (!Energy) {
+        S1[j] += s.h[k] * gv.v;
+        S1[k] += s.h[j] * gv.v;
+        S2x[j] += s.h[k] * gv.d * s.ax[k];
+        S2y[j] += s.h[k] * gv.d * s.ay[k];
+        S2x[k] += s.h[j] * gv.d * s.ax[j];
+        S2y[k] += s.h[j] * gv.d * s.ay[j];
+      }
+    }
+  if constexpr (!Energy) {
+    for (int k = 0; k < 6; ++k) {
+      const double along = 2 * s.hpu[k] * S1[k] + s.fpu[k];
+      D[2 * k] = 2 * s.h[k] * S2x[k] + along * s.ax[k];
+      D[2 * k + 1] = 2 * s.h[k] * S2y[k] + along * s.ay[k];
+    }
+  }
+  return T;
+}
+
+template <bool Energy, class G>
+inline double centre(const G& g, const Slots& s, double* D) {
+  if constexpr (G::quadratic) return centre_moments<Energy>(g, s, D);
+  else return centre_pairs<Energy>(g, s, D);
+}
+
+template <class P, class H, class G, DampingKind K>
+struct Passes {
+  static void bonds(ForceContext& c, std::size_t i0, std::size_t i1, int worker) {
+    const P& pair = *static_cast<const P*>(c.pair);
+    const H& cut = *static_cast<const H*>(c.cutoff_law);
+    const double* x = c.x;
+    const double* y = c.y;
+    const std::int32_t* nbr = c.nbr;
+    int events = 0, breaks = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      const double xi = x[i], yi = y[i];
+      for (std::size_t s = 0; s < 3; ++s) {
+        const std::size_t b = 3 * i + s;
+        BondData& d = c.bond[b];
+        if (c.status[b] != kIntact) {
+          d = BondData{0, 0, 0, 0, 0, 0};
+          continue;
+        }
+        const auto j = static_cast<std::size_t>(nbr[6 * i + s]);
+        double bx = x[j] - xi, by = y[j] - yi;
+        if (c.shift) {
+          bx += c.shift[2 * b];
+          by += c.shift[2 * b + 1];
+        }
+        const double u = std::sqrt(bx * bx + by * by);
+        const double inv_u = 1 / u;
+        const double uc = c.cutoff[b];
+        if (u > uc) [[unlikely]] {
+          if (c.track) {
+            if (c.past_cutoff[b] == 0) {
+              c.past_cutoff[b] = 1;
+              ++events;
+            }
+            if (u > uc + c.break_extra) {
+              c.status[b] = kBroken;
+              ++breaks;
+              d = BondData{0, 0, 0, 0, 0, 0};
+              continue;
+            }
+          }
+        }
+        const VD f = pair(u, uc);
+        const VD hv = cut(u, uc);
+        d.bx = bx;
+        d.by = by;
+        d.h = hv.v;
+        d.hpu = hv.d * inv_u;
+        d.fpu = f.d * inv_u;
+        if constexpr (K == DampingKind::uniform) {
+          d.kel = c.beta * inv_u * inv_u;
+        } else if constexpr (K == DampingKind::near_failure) {
+          const double ramp = (u - c.damping_onset) / (uc - c.damping_onset);
+          d.kel = ramp <= 0 ? 0.0 : c.beta * (ramp < 1 ? ramp : 1.0) * inv_u * inv_u;
+        }
+      }
+    }
+    c.events[worker] += events;
+    c.breaks[worker] += breaks;
+  }
+
+  static void centres(ForceContext& c, std::size_t i0, std::size_t i1) {
+    const G& g = *static_cast<const G*>(c.angle);
+    Slots s;
+    for (std::size_t i = i0; i < i1; ++i) {
+      load_slots(c, i, s);
+      centre<false>(g, s, c.D + 12 * i);
+    }
+  }
+
+  static void gather(ForceContext& c, std::size_t i0, std::size_t i1, int worker) {
+    const double* D = c.D;
+    const std::int32_t* nbr = c.nbr;
+    int bad = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      double fx = 0, fy = 0;
+      const double* Di = D + 12 * i;
+      for (std::size_t s = 0; s < 6; ++s) {
+        fx += Di[2 * s];
+        fy += Di[2 * s + 1];
+      }
+      for (std::size_t s = 0; s < 6; ++s) {
+        const auto j = static_cast<std::size_t>(nbr[6 * i + s]);
+        const std::size_t r = s < 3 ? s + 3 : s - 3;
+        fx -= D[12 * j + 2 * r];
+        fy -= D[12 * j + 2 * r + 1];
+      }
+      if constexpr (K != DampingKind::none) {
+        const double vxi = c.vx[i], vyi = c.vy[i];
+        for (std::size_t s = 0; s < 6; ++s) {
+          const auto j = static_cast<std::size_t>(nbr[6 * i + s]);
+          const BondData& d = s < 3 ? c.bond[3 * i + s] : c.bond[3 * j + s - 3];
+          const std::size_t jv = j < c.n ? j : i;  // the sentinel has no velocity (its kel is 0)
+          const double p = d.kel * ((c.vx[jv] - vxi) * d.bx + (c.vy[jv] - vyi) * d.by);
+          fx += p * d.bx;
+          fy += p * d.by;
+        }
+      }
+      if (!(std::isfinite(fx) && std::isfinite(fy))) [[unlikely]]
+        ++bad;
+      c.ax[i] = fx * c.inv_mass;
+      c.ay[i] = fy * c.inv_mass;
+    }
+    c.nonfinite[worker] += bad;
+  }
+
+  static void energy(ForceContext& c, std::size_t k0, std::size_t k1) {
+    const P& pair = *static_cast<const P*>(c.pair);
+    const G& g = *static_cast<const G*>(c.angle);
+    const std::size_t block = ForceContext::kEnergyBlock;
+    Slots s;
+    for (std::size_t k = k0; k < k1; ++k) {
+      double ep = 0, et = 0;
+      const std::size_t end = std::min(c.n, (k + 1) * block);
+      for (std::size_t i = k * block; i < end; ++i) {
+        for (std::size_t f = 0; f < 3; ++f) {
+          const std::size_t b = 3 * i + f;
+          const double uc = c.cutoff[b];
+          if (c.status[b] == kBroken) {
+            ep += 2 * pair(uc, uc).v;
+          } else if (c.status[b] == kIntact) {
+            const auto j = static_cast<std::size_t>(c.nbr[6 * i + f]);
+            double bx = c.x[j] - c.x[i], by = c.y[j] - c.y[i];
+            if (c.shift) {
+              bx += c.shift[2 * b];
+              by += c.shift[2 * b + 1];
+            }
+            ep += 2 * pair(std::sqrt(bx * bx + by * by), uc).v;
+          }
+        }
+        load_slots(c, i, s);
+        et += centre<true>(g, s, nullptr);
+      }
+      c.block_energy[2 * k] = ep;
+      c.block_energy[2 * k + 1] = et;
+    }
+  }
+};
+
+}  // namespace
+
+void virial_blocks(ForceContext& c, std::size_t k0, std::size_t k1) {
+  const std::size_t block = ForceContext::kEnergyBlock;
+  Slots s;
+  for (std::size_t k = k0; k < k1; ++k) {
+    double w[4] = {0, 0, 0, 0};
+    const std::size_t end = std::min(c.n, (k + 1) * block);
+    for (std::size_t i = k * block; i < end; ++i) {
+      load_slots(c, i, s);
+      const double* D = c.D + 12 * i;
+      for (int t = 0; t < 6; ++t) {
+        w[0] += D[2 * t] * s.ax[t];
+        w[1] += D[2 * t] * s.ay[t];
+        w[2] += D[2 * t + 1] * s.ax[t];
+        w[3] += D[2 * t + 1] * s.ay[t];
+      }
+    }
+    for (int t = 0; t < 4; ++t) c.block_energy[4 * k + static_cast<std::size_t>(t)] = w[t];
+  }
+}
+
+ForcePasses select_passes(const BondLaw& law, DampingKind damping) {
+  return std::visit(
+      [damping](const auto& p, const auto& h, const auto& g) -> ForcePasses {
+        using P = std::decay_t<decltype(p)>;
+        using H = std::decay_t<decltype(h)>;
+        using G = std::decay_t<decltype(g)>;
+        switch (damping) {
+          case DampingKind::uniform: {
+            using T = Passes<P, H, G, DampingKind::uniform>;
+            return {&T::bonds, &T::centres, &T::gather, &T::energy};
+          }
+          case DampingKind::near_failure: {
+            using T = Passes<P, H, G, DampingKind::near_failure>;
+            return {&T::bonds, &T::centres, &T::gather, &T::energy};
+          }
+          default: {
+            using T = Passes<P, H, G, DampingKind::none>;
+            return {&T::bonds, &T::centres, &T::gather, &T::energy};
+          }
+        }
+      },
+      law.pair, law.cutoff, law.angle);
+}
+
+}  // namespace frac::rubber

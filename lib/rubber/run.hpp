@@ -1,0 +1,51 @@
+#pragma once
+// A rubber-run: the model built from a mesh and a prepared scene, its initial state (pre-stretch,
+// clamps, seed crack, pulse, noise, tip kick), the time loop with the shared integrator, and what it
+// records: frames, observables (energies, bonds past u_c, crack tip and its speed) and bond-break
+// events, through io::RunWriter. The loop allocates nothing; progress goes to a core::Progress.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/progress.hpp"
+#include "dynamics/integrator.hpp"
+#include "io/run_io.hpp"
+#include "mesh/node_mesh.hpp"
+#include "rubber/crack.hpp"
+#include "rubber/model.hpp"
+#include "rubber/setup.hpp"
+
+namespace frac::rubber {
+
+// The model and its initial state for a scene, before any step.
+struct RubberSystem {
+  std::unique_ptr<Model> model;
+  std::unique_ptr<CrackPath> path;
+  std::vector<double> q0, v0;
+  std::size_t seeded = 0;  // crossing bonds cut by crack.seed_length (besides the mesh's notch)
+};
+RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& setup, std::uint64_t seed, int threads);
+
+struct RubberSummary {
+  long long steps = 0;
+  double time = 0, dt = 0;
+  std::string stop_reason;
+  std::size_t events = 0;           // bonds that went past their cut-off (once each)
+  std::size_t irreversible = 0;     // bonds removed by irreversible breaking
+  std::size_t toughened = 0;        // bonds whose cut-off was raised
+  CrackPath::Tip tip_start, tip;    // crack tip at the start and at the end
+  double tip_speed = 0;             // m/s, last fitted speed of λx × reference tip x over output.speed_window
+  double energy_start = 0, energy_end = 0;  // J, kinetic + potential
+  double wall_seconds = 0;
+  double loop_seconds = 0;          // wall time of the time loop alone (steps, events, observations)
+  double ns_per_node_step() const {
+    return steps > 0 && nodes > 0 ? 1e9 * loop_seconds / (static_cast<double>(steps) * static_cast<double>(nodes)) : 0;
+  }
+  std::size_t nodes = 0;
+};
+
+// Runs to the stop rule. `writer` may be null (tests, benchmarks).
+RubberSummary run_rubber(RubberSystem& system, const RubberSetup& setup, io::RunWriter* writer, Progress& progress);
+
+}  // namespace frac::rubber

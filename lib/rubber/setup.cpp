@@ -1,0 +1,267 @@
+#include "rubber/setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <utility>
+#include <variant>
+
+#include "core/error.hpp"
+
+namespace frac::rubber {
+namespace {
+
+std::string num(double x, int precision = 6) {
+  std::ostringstream s;
+  s.precision(precision);
+  s << x;
+  return s.str();
+}
+
+// "3.4e-3 m (3.4Δ)"
+std::string len(double x, double spacing) { return num(x, 5) + " m (" + num(x / spacing, 4) + "Δ)"; }
+
+}  // namespace
+
+RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
+  RubberScene r;
+  const double d = mesh.spacing;
+  if (!(d > 0)) throw InputError("the mesh has no lattice spacing");
+  r.density = s.positive("material.density", r.density);
+  r.thickness = s.positive("material.thickness", r.thickness);
+  r.a = s.positive("material.a", r.a);
+  r.b = s.non_negative("material.b", r.b);
+  const double tau = d / std::sqrt(r.a);  // the natural time unit Δ/√a
+
+  r.pair = s.choice("law.pair", r.pair, pair_law_names());
+  r.cutoff = s.choice("law.cutoff", r.cutoff, cutoff_law_names());
+  r.angle = s.choice("law.angle", r.angle, angle_law_names());
+  r.short_width = s.positive("law.short_width", 0.1 * d);
+  r.cutoff_length = s.positive("law.cutoff_length", 3.5 * d);
+  r.cutoff_width = s.positive("law.cutoff_width", 0.05 * d);
+  if (!(r.cutoff_length > d + r.short_width))
+    throw UsageError(s.name() + ": law.cutoff_length = " + num(r.cutoff_length) + " m must exceed the spacing plus " +
+                     "law.short_width (" + num(d + r.short_width) + " m)");
+
+  r.damping = s.flag("physics.damping", r.damping);
+  r.irreversible = s.flag("physics.irreversible", r.irreversible);
+  r.toughening = s.flag("physics.toughening", r.toughening);
+  const std::string kind = s.choice("damping.kind", "uniform", {"uniform", "near_failure"});
+  r.damping_kind = kind == "uniform" ? DampingKind::uniform : DampingKind::near_failure;
+  const double mass = mr::node_mass(r.density * r.thickness, d);
+  r.beta = s.non_negative("damping.beta", 0.3 * mass / tau);
+  r.damping_onset = s.positive("damping.onset", r.cutoff_length - 10 * r.cutoff_width);
+  if (r.damping && r.damping_kind == DampingKind::near_failure && !(r.damping_onset < r.cutoff_length))
+    throw UsageError(s.name() + ": damping.onset must lie below law.cutoff_length");
+  r.break_widths = s.positive("breaking.extra_widths", r.break_widths);
+  r.toughening_trigger = s.positive("toughening.trigger", 1.5 * d);
+  r.toughening_cutoff = s.positive("toughening.cutoff", r.cutoff_length + 10 * r.cutoff_width);
+  if (!(r.toughening_cutoff > r.cutoff_length))
+    throw UsageError(s.name() + ": toughening.cutoff must exceed law.cutoff_length");
+  r.toughening_every = s.integer("toughening.every", r.toughening_every);
+  if (r.toughening_every <= 0) throw UsageError(s.name() + ": toughening.every must be positive");
+
+  r.kind = s.choice("loading.kind", r.kind, {"stretch", "wave"});
+  r.stretch_x = s.positive("loading.stretch_x", r.stretch_x);
+  r.stretch_y = s.positive("loading.stretch_y", r.stretch_y);
+
+  r.clamp_rows = s.integer("boundary.clamp_rows", r.kind == "stretch" ? 2 : 0);
+  r.clamp_columns = s.integer("boundary.clamp_columns", 0);
+  if (r.clamp_rows < 0 || r.clamp_columns < 0) throw UsageError(s.name() + ": boundary clamps must not be negative");
+  if (2 * r.clamp_rows >= mesh.ny && r.clamp_rows > 0)
+    throw UsageError(s.name() + ": boundary.clamp_rows = " + std::to_string(r.clamp_rows) + " clamps the whole mesh (" +
+                     std::to_string(mesh.ny) + " rows)");
+  if (2 * r.clamp_columns >= mesh.nx && r.clamp_columns > 0)
+    throw UsageError(s.name() + ": boundary.clamp_columns = " + std::to_string(r.clamp_columns) +
+                     " clamps the whole mesh (" + std::to_string(mesh.nx) + " columns)");
+  const std::string periodic = s.choice("boundary.periodic", "none", {"none", "x", "y", "xy"});
+  r.periodic_x = periodic == "x" || periodic == "xy";
+  r.periodic_y = periodic == "y" || periodic == "xy";
+  if (r.periodic_y && r.clamp_rows > 0)
+    throw UsageError(s.name() + ": boundary.periodic = " + periodic + " leaves no top and bottom rows to clamp");
+  if (r.periodic_x && r.clamp_columns > 0)
+    throw UsageError(s.name() + ": boundary.periodic = " + periodic + " leaves no side columns to clamp");
+
+  r.seed_length = s.non_negative("crack.seed_length", 0.0);
+  r.tip_kick = s.non_negative("crack.tip_kick", 0.0);
+
+  r.pulse_kind = s.choice("pulse.kind", r.pulse_kind, {"longitudinal", "shear"});
+  r.pulse_direction = s.choice("pulse.direction", r.pulse_direction, {"x", "y"});
+  r.pulse_amplitude = s.non_negative("pulse.amplitude", r.kind == "wave" ? 0.01 * d : 0.0);
+  r.pulse_width = s.positive("pulse.width", 10 * d);
+  r.pulse_position = s.number("pulse.position", 0.5);
+  if (r.pulse_position < 0 || r.pulse_position > 1) throw UsageError(s.name() + ": pulse.position must lie in [0, 1]");
+
+  r.noise = s.non_negative("initial.noise", 0.0);
+
+  r.integrator = dynamics::parse_integrator_kind(s.text("integrator.kind", "verlet"), "integrator.kind");
+  if (s.text("integrator.dt", "auto") != "auto") r.dt = s.positive("integrator.dt", 0);
+  r.safety = s.positive("integrator.safety", r.safety);
+  if (r.safety > 1) throw UsageError(s.name() + ": integrator.safety must not exceed 1");
+  r.allow_unstable = s.flag("integrator.allow_unstable", r.allow_unstable);
+
+  r.t_max = s.positive("stop.t_max", 100 * tau);
+  r.max_steps = s.integer("stop.max_steps", r.max_steps);
+  if (r.max_steps <= 0) throw UsageError(s.name() + ": stop.max_steps must be positive");
+  r.tip_margin = s.non_negative("stop.tip_margin", 0.0);
+
+  r.frame_interval = s.non_negative("output.frame_interval", r.t_max / 20);
+  r.observe_every = s.integer("output.observe_every", r.observe_every);
+  if (r.observe_every <= 0) throw UsageError(s.name() + ": output.observe_every must be positive");
+  r.speed_window = s.positive("output.speed_window", 20 * tau);
+  return r;
+}
+
+std::vector<std::string> far_field_warnings(const RubberSetup& su) {
+  std::vector<std::string> w;
+  const RubberScene& sc = su.scene;
+  const double d = su.spacing, knee = d + sc.short_width;
+  const std::string at = "at stretch (" + num(sc.stretch_x) + ", " + num(sc.stretch_y) + ")";
+  double u0 = 0;
+  int longest = 0;
+  for (int f = 0; f < 3; ++f) {
+    const double u = su.family_length[f];
+    if (u > u0) {
+      u0 = u;
+      longest = f;
+    }
+    if (u < knee) {
+      w.push_back("the bonds at " + num(su.family_angle[f]) + " degrees are " + len(u, d) + " long " + at +
+                  ", shorter than spacing + law.short_width = " + len(knee, d) +
+                  ": the lattice is not Mooney-Rivlin there (short-bond branch of f; physics/rubber-lattice.md §4)" +
+                  (su.family_angle[0] == 0 ? "; a mesh with close-packed rows along y (mesh-gen triangular --rows-along y) may avoid it"
+                                            : "; a mesh with close-packed rows along x may avoid it"));
+    }
+  }
+  if (sc.cutoff != "none") {
+    const double widths = (sc.cutoff_length - u0) / sc.cutoff_width;
+    const double deficit = 1 - std::visit([&](const auto& h) { return h(u0, sc.cutoff_length).v; }, su.law.cutoff);
+    auto speed = [](double c) { return std::isnan(c) ? std::string("unstable") : num(c, 4) + " m/s"; };
+    const std::string speeds = "the lattice's long-wave speeds along x are c_T = " + speed(su.lattice_x.transverse) +
+                               ", c_L = " + speed(su.lattice_x.longitudinal) + " against Mooney-Rivlin " +
+                               speed(su.mr_x.transverse) + ", " + speed(su.mr_x.longitudinal);
+    const std::string where = " of the bonds at " + num(su.family_angle[longest]) + " degrees " + at;
+    std::string msg;
+    if (sc.cutoff == "fermi" && widths < 15) {
+      msg = "law.cutoff_length u_c = " + len(sc.cutoff_length, d) + " is " + num(widths, 3) +
+            " cut-off widths (law.cutoff_width = " + len(sc.cutoff_width, d) +
+            ") above the far-field bond length u_0 = " + len(u0, d) + where +
+            "; below 15 widths the cut-off stiffens the far field (rubber-lattice-validation.md §D.1): " + speeds +
+            "; raise u_c to at least u_0 + 15 widths = " + len(u0 + 15 * sc.cutoff_width, d) + " or narrow the cut-off";
+    } else if (sc.cutoff != "fermi" && deficit > 1e-12) {
+      msg = "the " + sc.cutoff + " cut-off reaches the far-field bonds: h(u_0) = " + num(1 - deficit, 6) + " at u_0 = " +
+            len(u0, d) + where + " (it acts from u_c - width = " + len(sc.cutoff_length - sc.cutoff_width, d) +
+            "), which changes the far field's stiffness: " + speeds + "; raise u_c to at least u_0 + width = " +
+            len(u0 + sc.cutoff_width, d);
+    }
+    if (!msg.empty()) {
+      if (u0 >= sc.cutoff_length) msg = "the far-field bonds (" + len(u0, d) + ") are past the cut-off u_c = " +
+                                        len(sc.cutoff_length, d) + ": the pre-stretched sheet has no cohesion; " + msg;
+      w.push_back(msg);
+    }
+  }
+  return w;
+}
+
+RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
+  RubberSetup su;
+  su.scene = sc;
+  su.spacing = mesh.spacing;
+  const double d = su.spacing;
+  su.rho = sc.density * sc.thickness;
+  su.node_mass = mr::node_mass(su.rho, d);
+  LawParams p;
+  p.spacing = d;
+  p.A = mr::lattice_A(su.node_mass, sc.a, d);
+  p.B = mr::lattice_B(su.node_mass, sc.a, sc.b, d);
+  p.short_width = sc.short_width;
+  p.cutoff = sc.cutoff_length;
+  p.cutoff_width = sc.cutoff_width;
+  su.law = make_bond_law(p, sc.pair, sc.cutoff, sc.angle);
+  su.F = Eigen::Matrix2d{{sc.stretch_x, 0}, {0, sc.stretch_y}};
+  const bool rows_x = mesh.rows_along != "y";
+  for (int f = 0; f < 3; ++f) {
+    const double th = (rows_x ? 0.0 : 30.0) + 60.0 * f;
+    su.family_angle[f] = th;
+    const double r = th * std::numbers::pi / 180;
+    su.family_length[f] = (su.F * Eigen::Vector2d(std::cos(r), std::sin(r))).norm() * d;
+  }
+
+  // Stability: the stiffest of three states a run meets: the stretched far field, the relaxed lattice
+  // (crack faces, free edges; branch 1 of f is stiff, ω ∝ √(Δ/u_s)), and bonds passing through the
+  // cut-off, where h'' ∝ 1/w² multiplies the large three-body energy (probed with the longest family at
+  // several points of the cut-off region; about 10 times the far field for a Fermi width of 0.05Δ).
+  su.omega_far = omega_max(su.law, su.node_mass, su.F, rows_x);
+  su.omega_relaxed = omega_max(su.law, su.node_mass, Eigen::Matrix2d::Identity(), rows_x);
+  if (sc.cutoff != "none") {
+    // Scan the cut-off region: the curvature of h peaks at u_c − 1.32 w for the Fermi function, at
+    // u_c − 0.21 L and u_c − 0.79 L for the smoothstep.
+    // With toughening, bonds also pass through the raised cut-off, where g is larger still.
+    const double u0 = std::max({su.family_length[0], su.family_length[1], su.family_length[2]});
+    std::vector<std::pair<double, BondLaw>> cutoffs = {{sc.cutoff_length, su.law}};
+    if (sc.toughening) {
+      LawParams tp = p;
+      tp.cutoff = sc.toughening_cutoff;
+      cutoffs.emplace_back(sc.toughening_cutoff, make_bond_law(tp, sc.pair, sc.cutoff, sc.angle));
+    }
+    for (const auto& [uc, law] : cutoffs)
+      for (double k : {0.21, 0.5, 0.79, 1.0, 1.32}) {
+        const double scale = (uc - k * sc.cutoff_width) / u0;
+        su.omega_cutoff = std::max(su.omega_cutoff, omega_max(law, su.node_mass, scale * su.F, rows_x));
+      }
+  }
+  su.omega_max = std::max({su.omega_far, su.omega_relaxed, su.omega_cutoff});
+  su.dt_bound = dynamics::stability_limit(sc.integrator) / su.omega_max;
+  su.dt = sc.dt > 0 ? sc.dt : sc.safety * su.dt_bound;
+  if (sc.dt > su.dt_bound && !sc.allow_unstable) {
+    throw UsageError("integrator.dt = " + num(sc.dt) + " s is above the stability bound " + num(su.dt_bound) +
+                     " s of " + std::string(dynamics::name(sc.integrator)) + " (omega_max = " + num(su.omega_max) +
+                     " rad/s, the stiffest of the stretched far field, the relaxed lattice and a bond passing through "
+                     "the cut-off); lower it, use auto, "
+                     "or insist with --integrator.allow_unstable on");
+  }
+
+  su.mr_x = mr::speeds_x(sc.stretch_x, sc.stretch_y, sc.a, sc.b);
+  su.mr_y = mr::speeds_y(sc.stretch_x, sc.stretch_y, sc.a, sc.b);
+  su.lattice_x = lattice_speeds(su.law, su.node_mass, sc.stretch_x, sc.stretch_y, 'x', rows_x);
+  su.lattice_y = lattice_speeds(su.law, su.node_mass, sc.stretch_x, sc.stretch_y, 'y', rows_x);
+  su.warnings = far_field_warnings(su);
+  if (sc.b >= 2) su.warnings.push_back("material.b = " + num(sc.b) + ": Mooney-Rivlin has no real shear waves for b >= 2");
+  if (sc.dt > su.dt_bound)
+    su.warnings.push_back("integrator.dt = " + num(sc.dt) + " s is above the stability bound " + num(su.dt_bound) +
+                          " s (allowed by integrator.allow_unstable)");
+  return su;
+}
+
+std::vector<std::pair<std::string, std::string>> RubberSetup::derived() const {
+  std::vector<std::pair<std::string, std::string>> d;
+  auto add = [&d](const std::string& k, double v) { d.emplace_back("derived." + k, num(v, 10)); };
+  add("spacing", spacing);
+  add("node_mass", node_mass);
+  add("areal_density", rho);
+  add("A", law.params.A);
+  add("B", law.params.B);
+  for (int f = 0; f < 3; ++f) add("bond_length_" + num(family_angle[f]) + "deg", family_length[f]);
+  add("omega_max", omega_max);
+  add("omega_max_far_field", omega_far);
+  add("omega_max_relaxed", omega_relaxed);
+  add("omega_max_cutoff", omega_cutoff);
+  add("dt_bound", dt_bound);
+  add("dt", dt);
+  add("time_unit", spacing / std::sqrt(scene.a));
+  add("mooney_rivlin.c_T_x", mr_x.transverse);
+  add("mooney_rivlin.c_L_x", mr_x.longitudinal);
+  add("mooney_rivlin.c_T_y", mr_y.transverse);
+  add("mooney_rivlin.c_L_y", mr_y.longitudinal);
+  add("lattice.c_T_x", lattice_x.transverse);
+  add("lattice.c_L_x", lattice_x.longitudinal);
+  add("lattice.c_T_y", lattice_y.transverse);
+  add("lattice.c_L_y", lattice_y.longitudinal);
+  std::string all;
+  for (const auto& w : warnings) all += (all.empty() ? "" : "\n") + w;
+  d.emplace_back("derived.warnings", all);
+  return d;
+}
+
+}  // namespace frac::rubber
