@@ -39,8 +39,7 @@ int main(int argc, char** argv) {
     positional.add("input", 1);
     const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
 
-    Scene scene = Scene::load(scene_path);
-    for (const auto& [key, value] : overrides) scene.set(key, value);
+    Scene scene = Scene::load(scene_path, overrides);
     const dem::DemScene resolved = dem::read_dem_scene(scene);
     scene.check_all_used();
 
@@ -70,6 +69,7 @@ int main(int argc, char** argv) {
     io::add_input(run, in);
     io::OutputFile out(common.output);
     io::write_header(out.root(), "run", run, out.uuid());
+    out.root().group("parameters/dem-run").write_strings("scene_text", {scene.source_text()});
     io::RunWriter writer(out.root(), mesh, sim.model.bodies().mass, sim.model.bodies().inertia);
 
     Progress progress("dem-run", common.quiet);

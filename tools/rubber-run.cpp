@@ -50,12 +50,7 @@ int main(int argc, char** argv) {
     const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
     if (threads < 0) throw UsageError("--threads: must not be negative");
 
-    std::ifstream scene_file(scene_path);
-    if (!scene_file) throw InputError(scene_path + ": cannot read the scene file");
-    std::stringstream scene_text;
-    scene_text << scene_file.rdbuf();
-    Scene scene = Scene::parse(scene_text.str(), scene_path);
-    for (const auto& [key, value] : overrides) scene.set(key, value);
+    Scene scene = Scene::load(scene_path, overrides);
 
     const io::Group in = io::open_input(input);
     io::check_header(in, {"mesh"});
@@ -78,7 +73,7 @@ int main(int argc, char** argv) {
     io::add_input(run, in);
     io::OutputFile out(common.output);
     io::write_header(out.root(), "run", run, out.uuid());
-    out.root().group("parameters/rubber-run").write_strings("scene_text", {scene_text.str()});
+    out.root().group("parameters/rubber-run").write_strings("scene_text", {scene.source_text()});
     const std::vector<double> mass(mesh.nodes(), setup.node_mass);
     io::RunWriter writer(out.root(), mesh, mass);
 

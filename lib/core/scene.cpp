@@ -23,6 +23,7 @@ std::string format_number(double x) {
 Scene Scene::parse(const std::string& text, const std::string& name) {
   Scene scene;
   scene.name_ = name;
+  scene.source_ = text;
   std::istringstream in(text);
   try {
     po::options_description none;
@@ -47,6 +48,12 @@ Scene Scene::load(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return parse(text.str(), path);
+}
+
+Scene Scene::load(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
+  Scene scene = load(path);
+  for (const auto& [key, value] : overrides) scene.set(key, value);
+  return scene;
 }
 
 void Scene::set(const std::string& key, const std::string& value) { values_[key] = value; }

@@ -17,6 +17,8 @@ class Scene {
   Scene() = default;
   // InputError naming the file (and line, where Boost tells it) for an unreadable or malformed file.
   static Scene load(const std::string& path);
+  // The file, then the command-line overrides ({"section.key", "value"}, from cli::split_overrides).
+  static Scene load(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides);
   static Scene parse(const std::string& text, const std::string& name);
   // Command-line overrides win over the file.
   void set(const std::string& key, const std::string& value);
@@ -39,11 +41,14 @@ class Scene {
   // UsageError naming every key of the file or the overrides that nothing read.
   void check_all_used() const;
   const std::string& name() const { return name_; }
+  // The scene file as read, verbatim (recorded in the run's /parameters).
+  const std::string& source_text() const { return source_; }
 
  private:
   const std::string* find(std::string_view key);
   [[noreturn]] void bad(std::string_view key, const std::string& value, const std::string& why) const;
   std::string name_ = "scene";
+  std::string source_;
   std::map<std::string, std::string, std::less<>> values_;
   std::map<std::string, std::string, std::less<>> resolved_;
 };
