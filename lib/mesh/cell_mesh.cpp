@@ -40,4 +40,29 @@ CellMesh make_cell_mesh(const std::vector<std::vector<Vec2>>& polygons,
   return m;
 }
 
+CellMesh make_square_grid(int nx, int ny) {
+  CellMesh m;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      for (auto v : {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.5, 0.5), Vec2(-0.5, 0.5)}) m.vertex.push_back(v);
+      m.vertex_offset.push_back(m.vertex_offset.back() + 4);
+      m.centroid.emplace_back(i + 0.5, j + 0.5);
+      m.area.push_back(1.0);
+      m.second_moment.push_back(1.0 / 6.0);
+    }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::int64_t k = j * nx + i;
+      if (i + 1 < nx) m.beam.push_back({k, k + 1});
+      if (j + 1 < ny) m.beam.push_back({k, k + nx});
+    }
+  std::sort(m.beam.begin(), m.beam.end());
+  m.beam_length.assign(m.beam.size(), 1.0);
+  m.beam_section.assign(m.beam.size(), 1.0);
+  m.shape = "rect";
+  m.spacing = 1.0;
+  m.bounds = {0, 0, static_cast<double>(nx), static_cast<double>(ny)};
+  return m;
+}
+
 }  // namespace frac::mesh

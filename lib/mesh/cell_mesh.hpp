@@ -50,4 +50,8 @@ CellMesh make_cell_mesh(const std::vector<std::vector<Vec2>>& polygons,
                         const std::vector<std::array<std::int64_t, 2>>& beams, const std::vector<double>& sections,
                         double spacing);
 
+// nx × ny unit squares (cell k = j·nx + i centred at (i + ½, j + ½)), a beam of length 1 and section 1
+// between side neighbours: the simplest cell mesh, for hand-built tests.
+CellMesh make_square_grid(int nx, int ny);
+
 }  // namespace frac::mesh

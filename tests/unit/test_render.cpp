@@ -43,31 +43,7 @@ void expect_rgb_near(const Rgb& a, const Rgb& b, double tol = 1e-9) {
   EXPECT_NEAR(a.b, b.b, tol);
 }
 
-// nx x ny unit squares (cell k = j nx + i centred at (i + 0.5, j + 0.5)), beams between side neighbours.
-mesh::CellMesh render_grid(int nx, int ny) {
-  mesh::CellMesh m;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      for (auto v : {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.5, 0.5), Vec2(-0.5, 0.5)}) m.vertex.push_back(v);
-      m.vertex_offset.push_back(m.vertex_offset.back() + 4);
-      m.centroid.emplace_back(i + 0.5, j + 0.5);
-      m.area.push_back(1.0);
-      m.second_moment.push_back(1.0 / 6.0);
-    }
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const std::int64_t k = j * nx + i;
-      if (i + 1 < nx) m.beam.push_back({k, k + 1});
-      if (j + 1 < ny) m.beam.push_back({k, k + nx});
-    }
-  std::sort(m.beam.begin(), m.beam.end());
-  m.beam_length.assign(m.beam.size(), 1.0);
-  m.beam_section.assign(m.beam.size(), 1.0);
-  m.shape = "rect";
-  m.spacing = 1.0;
-  m.bounds = {0, 0, static_cast<double>(nx), static_cast<double>(ny)};
-  return m;
-}
+mesh::CellMesh render_grid(int nx, int ny) { return mesh::make_square_grid(nx, ny); }
 
 // A 2 x 2 DEM run of two frames with t_eps = 0.02: frame 0 the reference state at rest; frame 1 at
 // t = 0.5 s with cell 3 turned by 45 degrees and moved by (0.25, 0), moving at (3, 4) m/s, beam 0
