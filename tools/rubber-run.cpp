@@ -1,6 +1,5 @@
 // rubber-run: Marder's two- and three-body lattice model of Mooney-Rivlin rubber on a triangular mesh,
 // under a scene (stretch with a seeded crack, or a wave pulse).
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
