@@ -14,6 +14,7 @@
 #include "rubber/lattice.hpp"
 #include "rubber/model.hpp"
 #include "rubber/mooney_rivlin.hpp"
+#include "rubber_test_support.hpp"
 
 namespace {
 
@@ -21,16 +22,7 @@ using namespace frac::rubber;
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-BondLaw natural_law(double b, double us, double uc, double w) {
-  LawParams p;
-  p.spacing = 1;
-  p.A = mr::lattice_A(1, 1, 1);
-  p.B = mr::lattice_B(1, 1, b, 1);
-  p.short_width = us;
-  p.cutoff = uc;
-  p.cutoff_width = w;
-  return make_bond_law(p);
-}
+using test::natural_law;
 
 std::unique_ptr<Model> make_model(const BondLaw& law, std::int64_t nx, std::int64_t ny, bool periodic,
                                   DampingKind damping = DampingKind::none, double beta = 0, int threads = 1) {

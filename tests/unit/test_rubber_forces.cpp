@@ -17,6 +17,7 @@
 #include "rubber/lattice.hpp"
 #include "rubber/model.hpp"
 #include "rubber/mooney_rivlin.hpp"
+#include "rubber_test_support.hpp"
 #include "rubber/probe.hpp"
 
 namespace {
@@ -25,17 +26,7 @@ using namespace frac::rubber;
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-BondLaw natural_law(double b, double us, double uc, double w, const char* pair = "marder",
-                    const char* cutoff = "fermi", const char* angle = "marder") {
-  LawParams p;
-  p.spacing = 1;
-  p.A = mr::lattice_A(1, 1, 1);
-  p.B = mr::lattice_B(1, 1, b, 1);
-  p.short_width = us;
-  p.cutoff = uc;
-  p.cutoff_width = w;
-  return make_bond_law(p, pair, cutoff, angle);
-}
+using test::natural_law;
 
 std::unique_ptr<Model> make_model(const BondLaw& law, std::int64_t nx, std::int64_t ny, bool rows_x, double notch,
                                   bool periodic, int threads = 1,

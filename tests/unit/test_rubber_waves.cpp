@@ -12,6 +12,7 @@
 
 #include "dynamics/integrator.hpp"
 #include "rubber/mooney_rivlin.hpp"
+#include "rubber_test_support.hpp"
 #include "rubber/probe.hpp"
 
 namespace {
@@ -20,16 +21,7 @@ using namespace frac::rubber;
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-BondLaw natural_law(double b, double us, double uc, double w) {
-  LawParams p;
-  p.spacing = 1;
-  p.A = mr::lattice_A(1, 1, 1);
-  p.B = mr::lattice_B(1, 1, b, 1);
-  p.short_width = us;
-  p.cutoff = uc;
-  p.cutoff_width = w;
-  return make_bond_law(p);
-}
+using test::natural_law;
 
 // ω of the standing wave x_i += ε U cos(k·r_i) on the patch, from the first zero of its amplitude
 // (a quarter period), integrated with velocity Verlet.

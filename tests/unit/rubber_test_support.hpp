@@ -1,0 +1,21 @@
+#pragma once
+// Shared by the rubber unit tests: the bond law in natural units (Δ = m = a = 1, b given), with the
+// short-bond width us, the cut-off uc and its width w; evaluators chosen by name (defaults: the paper's).
+#include "rubber/bond_law.hpp"
+#include "rubber/mooney_rivlin.hpp"
+
+namespace frac::rubber::test {
+
+inline BondLaw natural_law(double b, double us, double uc, double w, const char* pair = "marder",
+                           const char* cutoff = "fermi", const char* angle = "marder") {
+  LawParams p;
+  p.spacing = 1;
+  p.A = mr::lattice_A(1, 1, 1);
+  p.B = mr::lattice_B(1, 1, b, 1);
+  p.short_width = us;
+  p.cutoff = uc;
+  p.cutoff_width = w;
+  return make_bond_law(p, pair, cutoff, angle);
+}
+
+}  // namespace frac::rubber::test
