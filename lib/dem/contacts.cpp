@@ -117,7 +117,7 @@ void ContactSearch::rebuild(std::span<const double> q) {
           const Vec2 dij(dx, dy);
           neighbours_.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                                  static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
-                                 static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij))});
+                                 static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false});
         }
       }
     }
@@ -136,36 +136,52 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   const auto& d = bodies_->diameter;
   const double g = bodies_->length_scale;
   candidates_.clear();
-  for (const auto& pair : neighbours_) {
-    const auto i = static_cast<std::size_t>(pair[0]), j = static_cast<std::size_t>(pair[1]);
+  for (std::size_t p = 0; p < neighbours_.size(); ++p) {
+    auto& pair = neighbours_[p];
+    const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
     const double dx = x[j] - x[i], dy = y[j] - y[i];
     const double reach = r[i] + r[j];
-    if (dx * dx + dy * dy < reach * reach) candidates_.push_back(pair);
+    if (dx * dx + dy * dy < reach * reach)
+      candidates_.push_back(static_cast<std::int32_t>(p));
+    else
+      pair.overlapping = false;
   }
   out.candidate_pairs = static_cast<std::int64_t>(candidates_.size());
   if (geometry_.size() < candidates_.size()) geometry_.resize(candidates_.size() + candidates_.size() / 4);
-  // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep.
+  // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep,
+  // so the order of the tests changes no result, only the time: a pair that overlapped at the last
+  // search goes straight to clipping; the others try the facing edges that last separated them (cached
+  // per pair), then the current facing edges, which become the cached ones when they separate.
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const auto count = static_cast<std::ptrdiff_t>(candidates_.size());
 #pragma omp parallel for schedule(static) if (count > 1024)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const auto& pair = candidates_[static_cast<std::size_t>(k)];
-    const auto i = static_cast<std::size_t>(pair[0]), j = static_cast<std::size_t>(pair[1]);
+    auto& pair = neighbours_[static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)])];
+    const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
     const auto pi = world_polygon(i), pj = world_polygon(j);
     const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
     auto& geo = geometry_[static_cast<std::size_t>(k)];
-    // The cached facing edges first (a tessellation's shared edge), then the current facing edges.
-    if (geometry::edge_separates(pi, static_cast<std::size_t>(pair[2]), pj, slack) ||
-        geometry::edge_separates(pj, static_cast<std::size_t>(pair[3]), pi, slack) ||
-        geometry::separated_by_facing_edge(pi, pj, ci, cj, slack))
-      geo.kind = geometry::ContactGeometry::Kind::none;
-    else
-      geo = geometry::convex_overlap(pi, pj, ci, cj, g);
+    geo.kind = geometry::ContactGeometry::Kind::none;
+    if (!pair.overlapping) {
+      if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
+          geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
+        continue;
+      const Vec2 dc = cj - ci;
+      const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
+      if (geometry::edge_separates(pi, fi, pj, slack) || geometry::edge_separates(pj, fj, pi, slack)) {
+        pair.edge_i = static_cast<std::int32_t>(fi);
+        pair.edge_j = static_cast<std::int32_t>(fj);
+        continue;
+      }
+    }
+    geo = geometry::convex_overlap(pi, pj, ci, cj, g, static_cast<std::size_t>(pair.edge_j));
+    pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
   }
   for (std::size_t k = 0; k < candidates_.size(); ++k) {
     const auto& geo = geometry_[k];
     if (geo.kind == geometry::ContactGeometry::Kind::none) continue;
-    const auto i = static_cast<std::size_t>(candidates_[k][0]), j = static_cast<std::size_t>(candidates_[k][1]);
+    const auto& pair = neighbours_[static_cast<std::size_t>(candidates_[k])];
+    const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
     if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
     if (geo.distinct_crossings > 2) ++out.multi_crossing;
     out.i.push_back(static_cast<std::int32_t>(i));

@@ -66,9 +66,14 @@ class ContactSearch {
   // radius times rotation), so no pair can start to overlap unseen.
   double skin_ = 0;
   std::vector<double> ref_;  // q at the last build
-  std::vector<std::array<std::int32_t, 4>> neighbours_;  // i, j, facing edge of i, facing edge of j
+  struct NeighbourPair {
+    std::int32_t i, j;
+    std::int32_t edge_i, edge_j;  // the facing edges that last separated the pair (first vertex index)
+    bool overlapping;             // the pair overlapped at the last search
+  };
+  std::vector<NeighbourPair> neighbours_;
   std::int64_t rebuilds_ = 0;
-  std::vector<std::array<std::int32_t, 4>> candidates_;  // those whose bounding circles overlap now
+  std::vector<std::int32_t> candidates_;  // indices of the pairs whose bounding circles overlap now
   std::vector<geometry::ContactGeometry> geometry_;      // one slot per candidate (filled in parallel)
 };
 

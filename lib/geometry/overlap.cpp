@@ -32,12 +32,19 @@ struct LabelledPolygon {
 // One Sutherland-Hodgman step: keep the part of `in` on the left of the directed line a -> b
 // (closed half-plane, no tolerance). The new edge along the line gets `line_label`; pieces of old
 // edges keep theirs. An inside vertex exactly on the line is not repeated as a crossing.
-void clip_step(const LabelledPolygon& in, const Vec2& a, const Vec2& b, int line_label, LabelledPolygon& out) {
-  out.size = 0;
+// Returns false, leaving `out` untouched, when every vertex of `in` is on the left or on the line:
+// the step would copy `in` unchanged.
+bool clip_step(const LabelledPolygon& in, const Vec2& a, const Vec2& b, int line_label, LabelledPolygon& out) {
   const Vec2 d = b - a;
   const std::size_t n = in.size;
   std::array<double, kMaxOverlapVertices> side;  // cross(d, p - a): > 0 on the left
-  for (std::size_t k = 0; k < n; ++k) side[k] = cross(d, in.v[k] - a);
+  bool all_inside = true;
+  for (std::size_t k = 0; k < n; ++k) {
+    side[k] = cross(d, in.v[k] - a);
+    all_inside = all_inside && side[k] >= 0.0;
+  }
+  if (all_inside) return false;
+  out.size = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t k1 = k + 1 == n ? 0 : k + 1;
     const double sp = side[k], sq = side[k1];
@@ -58,37 +65,24 @@ void clip_step(const LabelledPolygon& in, const Vec2& a, const Vec2& b, int line
       out.push(p + (sp / (sp - sq)) * (q - p), in.label[k]);
     }
   }
+  return true;
 }
-
-// True if the point p lies within `tol` of the line through a with direction d (|d| > 0).
-bool near_line(const Vec2& p, const Vec2& a, const Vec2& d, double d_norm, double tol) {
-  return std::abs(cross(d, p - a)) <= tol * d_norm;
-}
-
-// The edges of a polygon with their lengths, computed once per overlap.
-struct Edges {
-  std::array<Vec2, kMaxContactPolygonVertices> start, dir;
-  std::array<double, kMaxContactPolygonVertices> norm;
-  std::size_t size = 0;
-  explicit Edges(std::span<const Vec2> p) : size(p.size()) {
-    for (std::size_t c = 0; c < size; ++c) {
-      start[c] = p[c];
-      dir[c] = p[c + 1 == size ? 0 : c + 1] - p[c];
-      norm[c] = dir[c].norm();
-    }
-  }
-};
 
 // Edge u -> v of the overlap lies on the boundary of `other` too (u, v within tol of one of its
 // edge lines, same orientation), or is shorter than tol: it then belongs to neither boundary.
-bool shared_edge(const Vec2& u, const Vec2& v, const Edges& other, double tol) {
+// Distances compare squared: |d × (p − a)| ≤ tol·|d|  ⇔  (d × (p − a))² ≤ tol²·|d|².
+bool shared_edge(const Vec2& u, const Vec2& v, std::span<const Vec2> other, double tol) {
   const Vec2 e = v - u;
-  if (e.squaredNorm() <= tol * tol) return true;
-  for (std::size_t c = 0; c < other.size; ++c) {
-    const Vec2& d = other.dir[c];
+  const double tol2 = tol * tol;
+  if (e.squaredNorm() <= tol2) return true;
+  const std::size_t m = other.size();
+  for (std::size_t c = 0; c < m; ++c) {
+    const Vec2& a = other[c];
+    const Vec2 d = other[c + 1 == m ? 0 : c + 1] - a;
     if (e.dot(d) <= 0.0) continue;
-    const Vec2& a = other.start[c];
-    if (near_line(u, a, d, other.norm[c], tol) && near_line(v, a, d, other.norm[c], tol)) return true;
+    const double limit = tol2 * d.squaredNorm();
+    const double su = cross(d, u - a), sv = cross(d, v - a);
+    if (su * su <= limit && sv * sv <= limit) return true;
   }
   return false;
 }
@@ -110,7 +104,7 @@ Vec2 centre_normal(const Vec2& dc) {
 }
 
 ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
-                             double g, OverlapPolygon* overlap) {
+                             double g, std::size_t first_clip_edge, OverlapPolygon* overlap) {
   const std::size_t n = pi.size(), m = pj.size();
   if (n > kMaxContactPolygonVertices || m > kMaxContactPolygonVertices) {
     throw InputError("convex_overlap: polygon with " + std::to_string(n > m ? n : m) + " vertices (at most " +
@@ -135,12 +129,15 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   LabelledPolygon* cur = &buf_a;
   LabelledPolygon* next = &buf_b;
   for (std::size_t k = 0; k < n; ++k) cur->push(li[k], static_cast<int>(k));
-  for (std::size_t b = 0; b < m && cur->size > 0; ++b) {
+  // Clip by P_j's edges starting at `first_clip_edge` (the edge facing P_i cuts P_i down to a sliver
+  // first, so the later steps handle few vertices); the intersection does not depend on the order.
+  const std::size_t first = first_clip_edge < m ? first_clip_edge : 0;
+  for (std::size_t step = 0; step < m && cur->size > 0; ++step) {
+    const std::size_t b = first + step < m ? first + step : first + step - m;
     const Vec2& a0 = lj[b];
     const Vec2& a1 = lj[b + 1 == m ? 0 : b + 1];
     if (a0 == a1) continue;  // a repeated vertex bounds nothing
-    clip_step(*cur, a0, a1, static_cast<int>(n + b), *next);
-    std::swap(cur, next);
+    if (clip_step(*cur, a0, a1, static_cast<int>(n + b), *next)) std::swap(cur, next);
   }
   const LabelledPolygon& P = *cur;
   const std::size_t K = P.size;
@@ -162,12 +159,11 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   // Shared status of each edge, evaluated on demand: -1 unknown, 0 no, 1 yes.
   std::array<signed char, kMaxOverlapVertices> shared_state;
   shared_state.fill(-1);
-  const Edges edges_i(si), edges_j(sj);
   auto shared = [&](std::size_t e) {
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
       const Vec2& v = P.v[e + 1 == K ? 0 : e + 1];
-      shared_state[e] = shared_edge(u, v, owner_j(e) ? edges_i : edges_j, eps_len) ? 1 : 0;
+      shared_state[e] = shared_edge(u, v, owner_j(e) ? si : sj, eps_len) ? 1 : 0;
     }
     return shared_state[e] == 1;
   };
@@ -239,13 +235,13 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
 }  // namespace
 
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale) {
-  return overlap_impl(pi, pj, ci, cj, length_scale, nullptr);
+                               const Vec2& cj, double length_scale, std::size_t first_clip_edge) {
+  return overlap_impl(pi, pj, ci, cj, length_scale, first_clip_edge, nullptr);
 }
 
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap) {
-  return overlap_impl(pi, pj, ci, cj, length_scale, &overlap);
+  return overlap_impl(pi, pj, ci, cj, length_scale, 0, &overlap);
 }
 
 std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d) {
@@ -281,12 +277,6 @@ bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const V
   for (const Vec2& v : q)
     if (e.y() * (v.x() - a.x()) - e.x() * (v.y() - a.y()) < limit) return false;
   return true;
-}
-
-bool separated_by_facing_edge(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
-                              double slack) {
-  const Vec2 d = cj - ci;
-  return edge_separates(pi, facing_edge(pi, d), pj, slack) || edge_separates(pj, facing_edge(pj, -d), pi, slack);
 }
 
 }  // namespace frac::geometry

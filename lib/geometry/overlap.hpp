@@ -74,23 +74,21 @@ struct ContactGeometry {
 // - n·(c_j - c_i) == 0 exactly for a contact line: n is the perpendicular whose first nonzero
 //   component is positive.
 // Throws InputError if a polygon has more than kMaxContactPolygonVertices vertices or g is not > 0.
+// `first_clip_edge`: the edge of P_j to clip by first (a hint for speed: the one facing P_i; the
+// result is the same up to round-off whatever the hint).
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale);
+                               const Vec2& cj, double length_scale, std::size_t first_clip_edge = 0);
 
 // The same, also returning the overlap polygon (empty when it has fewer than 3 vertices).
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap);
 
-// A cheap test that comes before convex_overlap: true when an edge of P_i (the one whose outward normal
-// points most toward c_j) or of P_j (most toward c_i) separates the two polygons, allowing a
-// penetration of at most `slack`. With slack ≤ eps_A / (the polygons' diameter), every pair it reports
-// separated is one convex_overlap reports as none, so skipping those pairs changes no result. Neighbours
-// of an unstressed tessellation touch along a shared edge and are separated by it.
-bool separated_by_facing_edge(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
-                              double slack);
-// The parts of that test: the edge of p (index of its first vertex) whose outward normal points most
-// along d, and whether edge `edge` of p separates q from p within `slack`. A neighbour list caches
-// the facing edges of each pair and tests them first.
+// A cheap test that comes before convex_overlap: the edge of p (index of its first vertex) whose
+// outward normal points most along d (toward the other polygon), and whether edge `edge` of p
+// separates q from p, allowing a penetration of at most `slack`. With slack ≤ eps_A / (the polygons'
+// diameter), every pair it reports separated is one convex_overlap reports as none, so skipping those
+// pairs changes no result. Neighbours of an unstressed tessellation touch along a shared edge and are
+// separated by it. A neighbour list caches the separating edges of each pair and tests them first.
 std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d);
 bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack);
 
