@@ -124,4 +124,35 @@ double truncated_exponential_lognorm(double c, double L);
 // Turns GSL's abort-on-error handler off (once): we check the status of every *_e call ourselves.
 void quiet_gsl();
 
+// The x_min scan both estimators share (Clauset, Shalizi and Newman 2009): every distinct value j of
+// the sorted sample `s` that leaves at least `min_tail` points and 3 distinct values is a candidate; the
+// one whose fit has the smallest KS distance wins. ks_at(j, best_ks, hint) returns that distance (or
+// anything ≥ best_ks when the candidate provably loses, +inf when its fit is invalid); fit_at(j) fits the
+// winner in full. `symbol` names the cutoff in failure messages (x_min, k_min).
+template <class SampleT, class KsAt, class FitAt>
+TailFit scan_xmin(const SampleT& s, std::int64_t min_tail, const std::string& symbol, KsAt&& ks_at, FitAt&& fit_at) {
+  const std::size_t K = s.distinct();
+  double best_ks = std::numeric_limits<double>::infinity();
+  std::size_t best = K;
+  std::int64_t tried = 0;
+  std::size_t hint = 0;  // where the previous candidate's KS deviation peaked
+  for (std::size_t j = 0; j + 2 < K; ++j) {
+    if (s.tail(j) < min_tail) break;  // tails only shrink with j
+    ++tried;
+    const double d = ks_at(j, best_ks, &hint);
+    if (d < best_ks) best_ks = d, best = j;
+  }
+  if (best == K) {
+    TailFit f;
+    f.candidates = tried;
+    f.failure = tried ? "no " + symbol + " candidate gave a valid fit"
+                      : "no " + symbol + " candidate leaves " + std::to_string(min_tail) +
+                            " points and 3 distinct values in the tail";
+    return f;
+  }
+  TailFit f = fit_at(best);
+  f.candidates = tried;
+  return f;
+}
+
 }  // namespace frac::analysis

@@ -78,30 +78,13 @@ TailFit fit_continuous_at(const Sample& s, std::size_t j, double xmin, double xm
 
 TailFit fit_continuous(const Sample& s, const ScanOptions& opt) {
   if (std::isfinite(opt.xmin)) return fit_continuous_at(s, s.first_at_least(opt.xmin), opt.xmin, opt.xmax, opt.ks);
-  const std::size_t K = s.distinct();
-  double best_ks = std::numeric_limits<double>::infinity();
-  std::size_t best = K;
-  std::int64_t tried = 0;
-  std::size_t hint = 0;  // where the previous candidate's KS deviation peaked
-  for (std::size_t j = 0; j + 2 < K; ++j) {
-    if (s.tail(j) < opt.min_tail) break;  // tails only shrink with j
-    ++tried;
-    const Core k = core_fit(s, j, s.value[j], opt.xmax);
-    if (!k.ok) continue;
-    const double d = core_ks(s, j, k, opt.ks, best_ks, &hint);
-    if (d < best_ks) best_ks = d, best = j;
-  }
-  if (best == K) {
-    TailFit f;
-    f.candidates = tried;
-    f.failure = tried ? "no x_min candidate gave a valid fit"
-                      : "no x_min candidate leaves " + std::to_string(opt.min_tail) +
-                            " points and 3 distinct values in the tail";
-    return f;
-  }
-  TailFit f = fit_continuous_at(s, best, s.value[best], opt.xmax, opt.ks);
-  f.candidates = tried;
-  return f;
+  return scan_xmin(
+      s, opt.min_tail, "x_min",
+      [&](std::size_t j, double best_ks, std::size_t* hint) {
+        const Core k = core_fit(s, j, s.value[j], opt.xmax);
+        return k.ok ? core_ks(s, j, k, opt.ks, best_ks, hint) : std::numeric_limits<double>::infinity();
+      },
+      [&](std::size_t j) { return fit_continuous_at(s, j, s.value[j], opt.xmax, opt.ks); });
 }
 
 double continuous_cdf(double x, double xmin, double alpha, double xmax) {

@@ -113,30 +113,13 @@ TailFit fit_discrete(const Sample& s, const ScanOptions& opt) {
     return fit_discrete_at(s, s.first_at_least(kmin), kmin, opt.xmax, opt.ks);
   }
   const double kmax = std::isinf(opt.xmax) ? opt.xmax : std::floor(opt.xmax);
-  const std::size_t K = s.distinct();
-  double best_ks = std::numeric_limits<double>::infinity();
-  std::size_t best = K;
-  std::int64_t tried = 0;
-  std::size_t hint = 0;  // where the previous candidate's KS deviation peaked
-  for (std::size_t j = 0; j + 2 < K; ++j) {
-    if (s.tail(j) < opt.min_tail) break;
-    ++tried;
-    const Core c = core_fit(s, j, s.value[j], kmax);
-    if (!c.ok) continue;
-    const double d = core_ks(s, j, c, best_ks, &hint);
-    if (d < best_ks) best_ks = d, best = j;
-  }
-  if (best == K) {
-    TailFit f;
-    f.candidates = tried;
-    f.failure = tried ? "no k_min candidate gave a valid fit"
-                      : "no k_min candidate leaves " + std::to_string(opt.min_tail) +
-                            " points and 3 distinct values in the tail";
-    return f;
-  }
-  TailFit f = fit_discrete_at(s, best, s.value[best], opt.xmax, opt.ks);
-  f.candidates = tried;
-  return f;
+  return scan_xmin(
+      s, opt.min_tail, "k_min",
+      [&](std::size_t j, double best_ks, std::size_t* hint) {
+        const Core c = core_fit(s, j, s.value[j], kmax);
+        return c.ok ? core_ks(s, j, c, best_ks, hint) : std::numeric_limits<double>::infinity();
+      },
+      [&](std::size_t j) { return fit_discrete_at(s, j, s.value[j], opt.xmax, opt.ks); });
 }
 
 DiscreteSampler::DiscreteSampler(double kmin, double alpha, double kmax)
