@@ -6,11 +6,15 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "rubber/mooney_rivlin.hpp"
 
 namespace frac::analysis {
 namespace {
 
-double root_or_nan(double c2) { return c2 > 0 ? std::sqrt(c2) : std::numeric_limits<double>::quiet_NaN(); }
+// A wave needs a positive speed: zero (b = 2 for shear) counts as none.
+double positive_or_nan(double c) { return c > 0 ? c : std::numeric_limits<double>::quiet_NaN(); }
+
+rubber::mr::Mat2 stretch_tensor(Stretch s) { return rubber::mr::Mat2{{s.x, 0}, {0, s.y}}; }
 
 std::string number(double v) {
   std::ostringstream out;
@@ -32,15 +36,14 @@ void validate(const MooneyRivlin& m, Stretch s) {
 
 MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direction) {
   validate(m, s);
-  const double nx = std::cos(direction), ny = std::sin(direction);
-  // |F^T n|^2 with F = diag(lx, ly).
-  const double ftn2 = s.x * s.x * nx * nx + s.y * s.y * ny * ny;
-  const double j = s.x * s.y;
+  const rubber::mr::Vec2 n(std::cos(direction), std::sin(direction));
+  const rubber::mr::Mat2 F = stretch_tensor(s);
+  const rubber::mr::Speeds c = rubber::mr::speeds(F, n, m.a, m.b);
   MrWaveSpeeds out;
   out.direction = direction;
-  out.stretch_along = std::sqrt(ftn2);
-  out.shear = root_or_nan(m.a * (1 - m.b / 2) * ftn2);
-  out.longitudinal = root_or_nan(m.a * ((1 - m.b / 2) * ftn2 + (m.b / 2) * j * j));
+  out.stretch_along = (F.transpose() * n).norm();
+  out.shear = positive_or_nan(c.transverse);
+  out.longitudinal = positive_or_nan(c.longitudinal);
   out.shear_reference = out.shear / out.stretch_along;
   out.longitudinal_reference = out.longitudinal / out.stretch_along;
   return out;
@@ -48,11 +51,14 @@ MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direc
 
 MrStress mooney_rivlin_stress(const MooneyRivlin& m, Stretch s) {
   validate(m, s);
+  const rubber::mr::Material material{m.a, m.b, m.density};
+  const rubber::mr::Mat2 F = stretch_tensor(s);
+  const rubber::mr::Mat2 P = rubber::mr::piola(F, material), sigma = rubber::mr::cauchy(F, material);
   MrStress out;
-  out.piola_xx = m.density * m.a * s.x * (1 + (m.b / 2) * (s.y * s.y - 1));
-  out.piola_yy = m.density * m.a * s.y * (1 + (m.b / 2) * (s.x * s.x - 1));
-  out.cauchy_xx = out.piola_xx / s.y;
-  out.cauchy_yy = out.piola_yy / s.x;
+  out.piola_xx = P(0, 0);
+  out.piola_yy = P(1, 1);
+  out.cauchy_xx = sigma(0, 0);
+  out.cauchy_yy = sigma(1, 1);
   return out;
 }
 
