@@ -10,18 +10,10 @@ repeats=${REPEATS:-5}
 threads=${THREADS:-"1 2"}
 out=bench/out
 mkdir -p "$out"
-command -v /usr/bin/time >/dev/null || { echo "bench: needs GNU time: apt-get install -y time" >&2; exit 1; }
+# shellcheck source=bench/lib.sh
+source "$(dirname "$0")/lib.sh"  # median_wall
+require_gnu_time
 scenes=data/scenes
-
-median_wall() {  # median wall seconds of a command over $repeats runs
-  local times=()
-  for ((r = 0; r < repeats; r++)); do
-    /usr/bin/time -f "%e" -o "$out/time.txt" "$@" >/dev/null 2>"$out/stderr.txt" ||
-    { echo "bench: failed: $*" >&2; cat "$out/stderr.txt" >&2; exit 1; }
-    times+=("$(cat "$out/time.txt")")
-  done
-  printf '%s\n' "${times[@]}" | sort -g | sed -n "$((repeats / 2 + 1))p"
-}
 
 beams_only=(--physics.contacts off --physics.breaking off --physics.friction off --physics.damping off)
 full_model=(--physics.contacts on --physics.breaking on --physics.friction on --physics.damping on

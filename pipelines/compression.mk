@@ -4,14 +4,17 @@
 #   make -f Makefile.analysis compression [CC_SEEDS='1 2 3']
 CC := $(RESULTS)/compression
 CC_SEEDS ?= $(firstword $(SEEDS))
+CC_CELLS := $(if $(MINI),10x16,25x40)
+# Broken-beam maps (Fig. 8) at these times, s: before (ε ≈ 2.4 %), just after (2.7 %) the stress peak, and the end.
+CC_MAP_TIMES := 0.025 0.028 0.03
 
 .PHONY: compression
-compression: $(CC)/table.md $(CC)/stress-strain.png
+compression: $(CC)/table.md $(CC)/stress-strain.png $(CC)/broken-maps
 	@cat $(CC)/table.md
 
 $(CC)/mesh-s%.h5: | build
 	@mkdir -p $(@D)
-	$(LAUNCH) $(BIN)/mesh-gen voronoi --shape rect --size 0.25x0.40 --cells 25x40 --seed $* -q -o $@
+	$(LAUNCH) $(BIN)/mesh-gen voronoi --shape rect --size 0.25x0.40 --cells $(CC_CELLS) --seed $* -q -o $@
 
 $(CC)/run-s%.h5: $(CC)/mesh-s%.h5 data/scenes/confined-compression.ini | build
 	@echo "dem-run confined-compression seed $*"
@@ -39,10 +42,18 @@ $(CC)/ours.csv: $(CC)/peaks.csv
 
 $(CC)/table.md: $(CC)/ours.csv $(CC)/peaks.csv data/reference/compression.csv
 	@{ echo "# Confined compression (Kun et al. 1999 Figs. 7-9)"; echo; \
-	   echo "25 × 40 cells, t_ε = 3 %, t_Θ = 4°, platens at 0.2 m/s each, seeds: $(CC_SEEDS)."; echo; \
+	   echo "$(CC_CELLS) cells, t_ε = 3 %, t_Θ = 4°, platens at 0.2 m/s each, seeds: $(CC_SEEDS)."; echo; \
 	   awk -F, -f scripts/compare.awk data/reference/compression.csv $<; echo; \
 	   echo "| seed | failure strain | peak stress (Pa) | stress drop after peak | broken beams |"; echo "|---|---|---|---|---|"; \
 	   awk -F, 'NR > 1 { printf "| %s | %.4g | %.4g | %.3f | %.3f |\n", $$1, $$2, $$3, $$4, $$5 }' $(CC)/peaks.csv; } > $@
 
 $(CC)/stress-strain.png: $(foreach s,$(CC_SEEDS),$(CC)/curve-s$(s).csv) pipelines/plots/compression.gp
 	@gnuplot -e "files='$(filter %.csv,$^)'; out='$(CC)/stress-strain'" pipelines/plots/compression.gp
+
+# Broken beams at three times (Fig. 8), first seed: only the broken beams drawn, cells by speed.
+CC_S1 := $(firstword $(CC_SEEDS))
+$(CC)/broken-maps: $(CC)/run-s$(CC_S1).h5
+	@mkdir -p $@
+	@for t in $(CC_MAP_TIMES); do $(BIN)/render $< --time $$t --beams broken --colour none --axes -q -o $@/broken-$$t.png; \
+	  $(BIN)/render $< --time $$t --beams broken --colour none --axes -q -o $@/broken-$$t.svg; done
+	@touch $@

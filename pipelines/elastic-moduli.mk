@@ -4,7 +4,8 @@
 # compression, and for the pure beam lattice (contacts off).
 #   make -f Makefile.analysis elastic-moduli [EM_SEEDS='1 2'] [JOBS=2]
 EM := $(RESULTS)/elastic-moduli
-EM_E := 1e8 2e8 5e8 1e9 2e9 4e9
+EM_E := $(if $(MINI),1e8 5e8,1e8 2e8 5e8 1e9 2e9 4e9)
+EM_CELLS := $(if $(MINI),10x16,25x40)
 EM_MODES := tension compression beams
 EM_SEEDS ?= $(firstword $(SEEDS))
 EM_CASES := $(foreach s,$(EM_SEEDS),$(foreach e,$(EM_E),$(foreach m,$(EM_MODES),$(EM)/runs/E$(e)-$(m)-s$(s))))
@@ -17,7 +18,7 @@ elastic-moduli: $(EM)/table.md $(EM)/moduli.png $(EM)/curves.png
 
 $(EM)/mesh-s%.h5: | build
 	@mkdir -p $(@D)
-	$(LAUNCH) $(BIN)/mesh-gen voronoi --shape rect --size 0.25x0.40 --cells 25x40 --seed $* -q -o $@
+	$(LAUNCH) $(BIN)/mesh-gen voronoi --shape rect --size 0.25x0.40 --cells $(EM_CELLS) --seed $* -q -o $@
 
 # runs/E<modulus>-<mode>-s<seed>.h5
 .SECONDEXPANSION:
@@ -47,18 +48,28 @@ $(EM)/moduli.csv: $(addsuffix .fit,$(EM_CASES))
 
 # Our numbers for the comparison with the paper's statements (data/reference/elastic-moduli.csv).
 $(EM)/ours.csv: $(EM)/moduli.csv
-	@awk -F, 'NR > 1 { key = $$2 "," $$1; K[key] += $$4; N[key] += $$6; c[key]++; if ($$2 == "tension") { r = $$4 / $$1; s += r; ss += r * r; m++ } } \
+	@awk -F, 'NR > 1 { key = $$2 "," $$1; K[key] += $$4; N[key] += $$6; c[key]++; if ($$2 == "tension") { r = $$4 / $$1; s += r; ss += r * r; m++; E[m] = $$1; KT[m] = $$4 } } \
 	END { print "quantity,value,error"; \
 	  kt = K["tension,5e8"] / c["tension,5e8"]; kc = K["compression,5e8"] / c["compression,5e8"]; \
 	  printf "K_compression_over_K_tension_at_E5e8,%.4g,\n", kc / kt; \
 	  mean = s / m; printf "K_tension_over_E_spread,%.4g,\n", sqrt(ss / m - mean * mean) / mean; \
+	  sx = sy = sxx = sxy = 0; for (i = 1; i <= m; i++) { sx += E[i]; sy += KT[i]; sxx += E[i] * E[i]; sxy += E[i] * KT[i] } \
+	  slope = (m * sxy - sx * sy) / (m * sxx - sx * sx); icpt = (sy - slope * sx) / m; res = 0; \
+	  for (i = 1; i <= m; i++) { d = (KT[i] - slope * E[i] - icpt) / KT[i]; res += d * d } \
+	  printf "K_tension_linear_fit_relative_rms_residual,%.4g,\n", sqrt(res / m); \
+	  printf "K_tension_linear_fit_slope,%.4g,\n", slope; \
+	  if (("compression,4e9" in N) && ("compression,1e8" in N)) \
+	    printf "nu_compression_rise_at_small_E,%.4g,\n", N["compression,1e8"] / c["compression,1e8"] - N["compression,4e9"] / c["compression,4e9"]; \
+	  if (("compression,4e9" in K) && ("compression,2e9" in K)) \
+	    printf "K_gap_ratio_E4e9_over_E2e9,%.4g,\n", (K["compression,4e9"] / c["compression,4e9"] - K["tension,4e9"] / c["tension,4e9"]) / \
+	      (K["compression,2e9"] / c["compression,2e9"] - K["tension,2e9"] / c["tension,2e9"]); \
 	  printf "nu_compression_minus_nu_tension_at_E5e8,%.4g,\n", N["compression,5e8"] / c["compression,5e8"] - N["tension,5e8"] / c["tension,5e8"]; \
 	  kb = 0; nb = 0; q = 0; for (key in K) if (key ~ /^beams,/) { split(key, p, ","); kb += K[key] / c[key] / p[2]; nb += N[key] / c[key]; q++ } \
 	  printf "K_over_E_pure_beam,%.4g,\n", kb / q; printf "nu_pure_beam,%.4g,\n", nb / q }' $< > $@
 
 $(EM)/table.md: $(EM)/ours.csv $(EM)/moduli.csv data/reference/elastic-moduli.csv
 	@{ echo "# Elastic moduli (Kun et al. 1999 Figs. 4-6)"; echo; \
-	   echo "25 × 40 cells, Y = 1e9 Pa, seeds: $(EM_SEEDS). K = slope of σ(ε), ν = −slope of ΔW/W against ΔL/L, fitted after t = $(EM_AFTER) s."; echo; \
+	   echo "$(EM_CELLS) cells, Y = 1e9 Pa, seeds: $(EM_SEEDS). K = slope of σ(ε), ν = −slope of ΔW/W against ΔL/L, fitted after t = $(EM_AFTER) s."; echo; \
 	   awk -F, -f scripts/compare.awk data/reference/elastic-moduli.csv $<; echo; \
 	   echo "| E (Pa) | mode | seed | K (Pa) | ν |"; echo "|---|---|---|---|---|"; \
 	   awk -F, 'NR > 1 { printf "| %s | %s | %s | %.4g ± %.2g | %.4f ± %.4f |\n", $$1, $$2, $$3, $$4, $$5, $$6, $$7 }' $(EM)/moduli.csv; } > $@

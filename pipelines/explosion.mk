@@ -4,8 +4,11 @@
 # t_Θ = 4° and t_Θ = 1…7° at t_ε = 3 % (Fig. 11), and β per parameter pair.
 #   make -f Makefile.analysis explosion [SEEDS='1 2 3'] [JOBS=2]
 EX := $(RESULTS)/explosion
-EX_TEPS := 1 2 3 4 5 6
-EX_TTHETA := 1 2 3 4 5 6 7
+EX_TEPS := $(if $(MINI),2 3,1 2 3 4 5 6)
+EX_TTHETA := $(if $(MINI),4,1 2 3 4 5 6 7)
+EX_CELLS := $(if $(MINI),300,1100)
+EX_RUN_OPTIONS := $(if $(MINI),--stop.t_max 1e-3 --output.frame_interval 2e-4,)
+EX_FIT_OPTIONS := $(if $(MINI),--bootstrap 20 --gof-samples 20 --min-tail 5,--bootstrap 100 --gof-samples 100)
 # Parameter pairs as teps-ttheta (percent, degrees); 3-4 is in both sweeps.
 EX_PAIRS := $(sort $(foreach e,$(EX_TEPS),$(e)-4) $(foreach t,$(EX_TTHETA),3-$(t)))
 EX_RUNS := $(foreach p,$(EX_PAIRS),$(foreach s,$(SEEDS),$(EX)/runs/$(p)-s$(s)))
@@ -16,7 +19,7 @@ explosion: $(EX)/table.md $(EX)/histograms.png $(EX)/snapshots $(EX)/pulse
 
 $(EX)/mesh-s%.h5: | build
 	@mkdir -p $(@D)
-	$(LAUNCH) $(BIN)/mesh-gen voronoi --shape disc --diameter 0.40 --cells 1100 --seed $* -q -o $@
+	$(LAUNCH) $(BIN)/mesh-gen voronoi --shape disc --diameter 0.40 --cells $(EX_CELLS) --seed $* -q -o $@
 
 # runs/<teps>-<ttheta>-s<seed>.h5
 .SECONDEXPANSION:
@@ -24,7 +27,7 @@ $(EX)/runs/%.h5: $$(EX)/mesh-$$(lastword $$(subst -, ,$$*)).h5 data/scenes/explo
 	@mkdir -p $(@D)
 	@IFS=- read -r teps ttheta seed <<< "$*"; echo "dem-run explosion t_eps $$teps % t_theta $$ttheta° $$seed"; \
 	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/explosion.ini $< -q -o $@ \
-	  --material.t_eps $$(awk -v p=$$teps 'BEGIN { print p / 100 }') --material.t_theta_deg $$ttheta
+	  --material.t_eps $$(awk -v p=$$teps 'BEGIN { print p / 100 }') --material.t_theta_deg $$ttheta $(EX_RUN_OPTIONS)
 
 $(EX)/runs/%.frag.h5: $(EX)/runs/%.h5
 	$(BIN)/fragment-count $< --min-cells 2 -q -o $@
@@ -32,7 +35,7 @@ $(EX)/runs/%.frag.h5: $(EX)/runs/%.h5
 # Pooled over seeds, per parameter pair: the fit (key value lines) and the log-binned histogram.
 $(EX)/fits/%.txt: $$(foreach s,$$(SEEDS),$$(EX)/runs/$$*-s$$(s).frag.h5)
 	@mkdir -p $(@D)
-	$(BIN)/powerlaw-fit $^ --column mass --bootstrap 100 --gof-samples 100 --format text \
+	$(BIN)/powerlaw-fit $^ --column mass $(EX_FIT_OPTIONS) --format text \
 	  --histogram-csv $(EX)/fits/$*.hist.csv -q -o $@
 
 $(EX)/betas.csv: $(foreach p,$(EX_PAIRS),$(EX)/fits/$(p).txt)
@@ -61,7 +64,7 @@ $(EX)/ours.csv: $(EX)/betas.csv $(EX)/kick.csv
 
 $(EX)/table.md: $(EX)/ours.csv $(EX)/betas.csv data/reference/explosion.csv
 	@{ echo "# Explosion of a disc (Kun et al. 1999 Figs. 1, 10, 11)"; echo; \
-	   echo "1100 cells in a 0.4 m disc, E0 = 500 J (h = 1 cm), seeds pooled: $(SEEDS); single cells left out; β = α of the"; \
+	   echo "$(EX_CELLS) cells in a 0.4 m disc, E0 = 500 J (h = 1 cm), seeds pooled: $(SEEDS); single cells left out; β = α of the"; \
 	   echo "maximum-likelihood fit of the density F(m) ~ m^-β (x_min by minimum KS distance), the log-binned slope beside it."; echo; \
 	   awk -F, -f scripts/compare.awk data/reference/explosion.csv $<; echo; \
 	   echo "| t_ε (%) | t_Θ (°) | β (MLE) | bootstrap σ | x_min (kg) | n_tail | GoF p | β (log-binned) |"; echo "|---|---|---|---|---|---|---|---|"; \
@@ -80,7 +83,7 @@ $(EX)/snapshots: $(EX)/runs/3-4-s$(EX_S1).h5 $(EX)/runs/3-4-s$(EX_S1).frag.h5
 
 # The elastic pulse with breaking off (Fig. 10): snapshots at 1e-4, 3e-4 and 5e-4 s.
 $(EX)/pulse.h5: $(EX)/mesh-s$(EX_S1).h5 data/scenes/pulse.ini | build
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/pulse.ini $< -q -o $@
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/pulse.ini $< -q -o $@ $(if $(MINI),--stop.t_max 2e-4,)
 
 $(EX)/pulse: $(EX)/pulse.h5
 	@mkdir -p $@

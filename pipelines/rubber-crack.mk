@@ -5,9 +5,10 @@
 # balance and the bonds past u_c. Ends in results/rubber-crack/table.{csv,md} and a snapshot of the run that
 # went furthest. docs/rubber-run.md discusses the outcome.
 #   make -f Makefile.analysis rubber-crack [RC_NODES=300x60] [RC_TMAX=2e-3] [JOBS=2]
+# MINI=1 (the end-to-end test): a 60 × 16 strip for 4 time units, two levers and one stretch.
 RC := $(RESULTS)/rubber-crack
-RC_NODES ?= 200x40
-RC_TMAX ?= 1e-3
+RC_NODES ?= $(if $(MINI),60x16,200x40)
+RC_TMAX ?= $(if $(MINI),1e-4,1e-3)
 RC_SCENE := data/scenes/stretch.ini
 RC_COMMON = --stop.t_max $(RC_TMAX) --stop.tip_margin 0.02 --output.frame_interval 1e-4 -q
 
@@ -24,9 +25,18 @@ RC_OPT_kick := --physics.irreversible on --crack.tip_kick 20
 RC_OPT_soft := $(RC_SOFT)
 RC_OPT_soft-all := $(RC_SOFT) --physics.damping on --damping.kind near_failure --damping.onset 2.69e-3 \
                    --physics.toughening on
-RC_LEVERS ?= paper irreversible damped near-failure toughened c1 kick soft soft-all
+# The three-body weight over all bonds (law.three_body_weight = all_bonds): a node that loses a neighbour fades
+# to the pair law; alone, with u_c 10 widths above the far field (the far field then stiffer), with the
+# softening law, and stretching the sheet with the seed in place (λy from 2 to 3.5 over 1e-3 s).
+RC_OPT_weight := --law.three_body_weight all_bonds
+RC_OPT_weight-uc10 := --law.three_body_weight all_bonds --law.cutoff_length 3.166e-3 --damping.onset 2e-3
+RC_OPT_weight-soft := $(RC_SOFT) --law.three_body_weight all_bonds
+RC_OPT_weight-ramp := --law.three_body_weight all_bonds --loading.stretch_y 3.5 --loading.ramp_from_y 2 \
+                      --loading.ramp_time 1e-3 --law.cutoff_length 3.874e-3 --toughening.cutoff 5e-3
+RC_LEVERS ?= $(if $(MINI),paper weight,paper irreversible damped near-failure toughened c1 kick soft soft-all weight \
+             weight-uc10 weight-soft weight-ramp)
 # The stretch across the crack, with the softening law placed 0.02Δ + L above each far field.
-RC_STRETCHES ?= 2.5 3 3.5
+RC_STRETCHES ?= $(if $(MINI),3,2.5 3 3.5)
 
 RC_RUNS := $(foreach l,$(RC_LEVERS),$(RC)/lever-$(l).h5) $(foreach s,$(RC_STRETCHES),$(RC)/stretch-$(s).h5)
 

@@ -54,9 +54,15 @@ int main(int argc, char** argv) {
     run.seed = std::to_string(common.seed);
     run.parameters = scene.resolved();
     run.parameters.emplace_back("scene", scene_path);
-    run.parameters.emplace_back("derived.dt", std::to_string(sim.time_step.dt));
-    run.parameters.emplace_back("derived.dt_bound", std::to_string(sim.time_step.bound));
-    run.parameters.emplace_back("derived.omega_max", std::to_string(sim.time_step.omega_max));
+    auto exact = [](double x) {  // std::to_string keeps 6 decimals: 1.3e-6 s would read 0.000001
+      std::ostringstream s;
+      s.precision(17);
+      s << x;
+      return s.str();
+    };
+    run.parameters.emplace_back("derived.dt", exact(sim.time_step.dt));
+    run.parameters.emplace_back("derived.dt_bound", exact(sim.time_step.bound));
+    run.parameters.emplace_back("derived.omega_max", exact(sim.time_step.omega_max));
     const dem::KickReport kick = dem::kick_report(sim);
     if (kick.cells > 0) {
       run.parameters.emplace_back("derived.kick_cells", std::to_string(kick.cells));
@@ -77,6 +83,8 @@ int main(int argc, char** argv) {
     out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
     out.root().set_attr("end_time", s.time);
     out.root().set_attr("stop_reason", s.stop_reason);
+    out.root().set_attr("wall_seconds", s.wall_seconds, "provenance");  // differs run to run: not data
+    out.root().set_attr("start_evaluations", static_cast<std::int64_t>(s.start_evaluations));
     out.commit();
     std::ostringstream line;
     line.precision(4);

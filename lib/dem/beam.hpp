@@ -16,6 +16,7 @@ struct BeamStiffness {
 
 // a = l0/(E S h), b = shear_ratio·a (the paper: b = 2a), c = l0³/(E I), I = h S³/12.
 inline BeamStiffness beam_stiffness(double l0, double section, double thickness, double young, double shear_ratio) {
+  if (young == 0) return {0, 0, 0};  // E = 0: no beam at all (the closed forms would give 0·∞/∞)
   const double a = l0 / (young * section * thickness);
   const double b = shear_ratio * a;
   const double c = l0 * l0 * l0 / (young * thickness * section * section * section / 12.0);

@@ -163,8 +163,10 @@ LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, M
       if (src == n) throw InputError("loading.kind = impact: no cell within " + std::to_string(depth) + " m of the bottom edge");
       setup.source = src;
       setup.kicked.push_back(src);
-      v0[n + src] = loading.impact_speed;
-      setup.kinetic_energy = 0.5 * bodies.mass[src] * loading.impact_speed * loading.impact_speed;
+      const double speed = loading.impact_energy > 0 ? std::sqrt(2 * loading.impact_energy / bodies.mass[src])
+                                                     : loading.impact_speed;
+      v0[n + src] = speed;
+      setup.kinetic_energy = 0.5 * bodies.mass[src] * speed * speed;
       break;
     }
   }

@@ -35,10 +35,10 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
       physics_(physics),
       contact_parameters_{material.grain_modulus, material.thickness, material.gamma_n, material.gamma_t,
                           material.friction} {
-  if (physics.beams) {
-    beams_ = Beams(mesh, material);
-    terms_.push_back(Term::beams);
-  }
+  // The beams' geometry is kept even when they are off (a run file records every mesh beam: intact flags
+  // and strains); off, the Simulation marks them all broken and the term is not in the list.
+  beams_ = Beams(mesh, material);
+  if (physics.beams) terms_.push_back(Term::beams);
   if (physics.contacts) {
     search_ = ContactSearch(mesh, bodies_);
     terms_.push_back(Term::contact_elastic);

@@ -42,7 +42,7 @@ bool all_finite(std::span<const double> x) {
 
 RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
                    std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
-                   Progress& progress) {
+                   Progress& progress, double start_tau) {
   RunSummary summary;
   summary.dt = dt;
   const std::size_t n = model.bodies().n;
@@ -58,7 +58,8 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   frame.intact.resize(nb);
   frame.strain.resize(nb);
 
-  integrator.start(model, 0.0, dt, q0, v0);
+  summary.start_evaluations =
+      dynamics::start(integrator, model, 0.0, dt, q0, v0, scene.integrator.start, start_tau);
   std::array<double, static_cast<std::size_t>(Term::count)> previous_power{};
   for (Term t : model.terms()) previous_power[static_cast<std::size_t>(t)] = model.power(t);
   double previous_boundary_power = model.boundary_power();

@@ -22,6 +22,7 @@ struct RunSummary {
   double energy_error = 0;    // max |E_balance − E_balance(0)| over the run, J
   double energy_scale = 0;    // J: the larger of the initial energy and the boundary work
   double wall_seconds = 0;
+  int start_evaluations = 0;  // force evaluations of an exact gear5 start (0 for the usual start)
 };
 
 struct Ledger {
@@ -31,9 +32,11 @@ struct Ledger {
 };
 
 // Runs `model` from (q0, v0); writes frames and observables through `writer` (frames every
-// plan.frame_interval and the final state; observables every plan.observe_every steps).
+// plan.frame_interval and the final state; observables every plan.observe_every steps). The integrator
+// starts as scene.integrator.start says; `start_tau` is the time scale of an exact start
+// (dynamics::taylor_derivatives: about 0.1/ω_max).
 RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
                    std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
-                   Progress& progress);
+                   Progress& progress, double start_tau);
 
 }  // namespace frac::dem

@@ -28,10 +28,12 @@ DemScene read_dem_scene(Scene& s) {
     l.energy = s.positive("loading.energy", l.energy);
   if (l.kind == LoadingKind::impact) {
     l.impact_speed = s.positive("loading.impact_speed", l.impact_speed);
+    l.impact_energy = s.non_negative("loading.impact_energy", l.impact_energy);
     l.layer_depth = s.non_negative("loading.layer_depth", l.layer_depth);
   }
   IntegratorSettings& in = d.integrator;
   in.kind = dynamics::parse_integrator_kind(s.text("integrator.kind", "gear5"), "integrator.kind");
+  in.start = dynamics::parse_start_kind(s.choice("integrator.start", "zero", {"zero", "exact"}), "integrator.start");
   const std::string dt = s.text("integrator.dt", "auto");
   if (dt != "auto") {
     in.dt = s.positive("integrator.dt", 0);

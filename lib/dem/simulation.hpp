@@ -1,6 +1,7 @@
 #pragma once
 // One DEM simulation from a mesh and a resolved scene: the model, the loading, the time step and the
 // integrator, ready to run. What dem-run (and tests, benchmarks) build before calling run_dem.
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -21,7 +22,11 @@ struct Simulation {
   std::unique_ptr<dynamics::Integrator> integrator;
   std::vector<double> q0, v0;
   RunSummary run(io::RunWriter* writer, Progress& progress) {
-    return run_dem(model, *integrator, scene, setup, q0, v0, time_step.dt, writer, progress);
+    return run_dem(model, *integrator, scene, setup, q0, v0, time_step.dt, writer, progress, start_tau());
+  }
+  // Time scale of an exact start: 0.1 of the fastest motion (ω_max, or the damping rate γ_max).
+  double start_tau() const {
+    return 0.1 / std::max(time_step.omega_max, time_step.gamma_max);
   }
 };
 

@@ -1,5 +1,8 @@
 #include "dynamics/integrator.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -15,6 +18,14 @@ IntegratorKind parse_integrator_kind(std::string_view name, std::string_view opt
 
 std::string_view name(IntegratorKind kind) { return kind == IntegratorKind::gear5 ? "gear5" : "verlet"; }
 
+StartKind parse_start_kind(std::string_view name, std::string_view option) {
+  if (name == "zero") return StartKind::zero;
+  if (name == "exact") return StartKind::exact;
+  throw UsageError(std::string(option) + ": unknown start '" + std::string(name) + "' (choose zero or exact)");
+}
+
+std::string_view name(StartKind start) { return start == StartKind::zero ? "zero" : "exact"; }
+
 double stability_limit(IntegratorKind kind) {
   // Largest ω·dt with spectral radius ≤ 1 of the step on ẍ = −ω²x: gear5 (c0 = 3/16) 0.3130, rounded
   // down; Verlet 2 (tests/unit/test_integrator.cpp re-measures both).
@@ -26,6 +37,147 @@ double damping_limit(IntegratorKind kind) { return kind == IntegratorKind::gear5
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind) {
   if (kind == IntegratorKind::gear5) return std::make_unique<Gear5>();
   return std::make_unique<VelocityVerlet>();
+}
+
+// ---------------------------------------------------------------- exact start
+namespace {
+
+// Collocation on s ∈ [−1, 1] (t = t0 + tau·s) at the Chebyshev points s_j = cos(π(j + ½)/N), and the
+// inverse of their Vandermonde matrix: the monomial coefficients of the polynomial through values f_j
+// are c_m = Σ_j inverse[m][j]·f_j (condition number ~1e3 for N = 10).
+constexpr int kNodes = 10;
+struct Collocation {
+  double s[kNodes];
+  double inverse[kNodes][kNodes];
+  Collocation() {
+    double a[kNodes][2 * kNodes] = {};
+    for (int j = 0; j < kNodes; ++j) {
+      s[j] = std::cos(3.14159265358979323846 * (j + 0.5) / kNodes);
+      double p = 1;
+      for (int m = 0; m < kNodes; ++m, p *= s[j]) a[j][m] = p;
+      a[j][kNodes + j] = 1;
+    }
+    // Gauss-Jordan with partial pivoting on [V | I] gives [I | V^-1].
+    for (int c = 0; c < kNodes; ++c) {
+      int pivot = c;
+      for (int r = c + 1; r < kNodes; ++r)
+        if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
+      for (int k = 0; k < 2 * kNodes; ++k) std::swap(a[c][k], a[pivot][k]);
+      const double d = a[c][c];
+      for (int k = 0; k < 2 * kNodes; ++k) a[c][k] /= d;
+      for (int r = 0; r < kNodes; ++r) {
+        if (r == c) continue;
+        const double f = a[r][c];
+        for (int k = 0; k < 2 * kNodes; ++k) a[r][k] -= f * a[c][k];
+      }
+    }
+    for (int m = 0; m < kNodes; ++m)
+      for (int j = 0; j < kNodes; ++j) inverse[m][j] = a[m][kNodes + j];
+  }
+};
+
+}  // namespace
+
+TaylorStart taylor_derivatives(System& system, double t0, std::span<const double> q0, std::span<const double> v0,
+                               double tau) {
+  if (!(tau > 0) || !std::isfinite(tau)) throw UsageError("exact start: the time scale tau must be positive");
+  static const Collocation col;
+  const std::size_t n = q0.size();
+  std::vector<std::vector<double>> q(kNodes), v(kNodes), a(kNodes);
+  for (int j = 0; j < kNodes; ++j) {
+    q[j].resize(n);
+    v[j].assign(v0.begin(), v0.end());
+    a[j].assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) q[j][i] = q0[i] + tau * col.s[j] * v0[i];
+  }
+  std::vector<double> c(kNodes * n);  // c[m·n + i]: coefficient of s^m of a_i(s)
+  TaylorStart out;
+  double rounding = 0;  // a few units in the last place of the largest coordinate
+  for (double x : q0) rounding = std::max(rounding, 8 * std::numeric_limits<double>::epsilon() * std::abs(x));
+  double previous = std::numeric_limits<double>::infinity();
+  int stalled = 0;
+  for (;;) {
+    ++out.iterations;
+    for (int j = 0; j < kNodes; ++j) {
+      const double t = t0 + tau * col.s[j];
+      system.prescribe(t, q[j], v[j], a[j]);
+      system.accelerations(t, q[j], v[j], a[j]);
+      system.prescribe(t, q[j], v[j], a[j]);
+      ++out.evaluations;
+    }
+    for (int m = 0; m < kNodes; ++m)
+      for (std::size_t i = 0; i < n; ++i) {
+        double sum = 0;
+        for (int j = 0; j < kNodes; ++j) sum += col.inverse[m][j] * a[j][i];
+        c[static_cast<std::size_t>(m) * n + i] = sum;
+      }
+    // q(s) = q0 + tau·s·v0 + tau²·Σ c_m s^(m+2)/((m+1)(m+2)), v(s) = v0 + tau·Σ c_m s^(m+1)/(m+1).
+    double change = 0, excursion = 0;
+    for (int j = 0; j < kNodes; ++j) {
+      const double s = col.s[j];
+      for (std::size_t i = 0; i < n; ++i) {
+        double u = 0, w = 0, p = s;  // p = s^(m+1)
+        for (int m = 0; m < kNodes; ++m, p *= s) {
+          const double cm = c[static_cast<std::size_t>(m) * n + i];
+          w += cm * p / (m + 1);
+          u += cm * p * s / ((m + 1) * (m + 2));
+        }
+        const double disp = tau * s * v0[i] + tau * tau * u;
+        const double qn = q0[i] + disp;
+        change = std::max(change, std::abs(qn - q[j][i]));
+        excursion = std::max(excursion, std::abs(disp));
+        q[j][i] = qn;
+        v[j][i] = v0[i] + tau * w;
+      }
+    }
+    out.residual = excursion > 0 ? change / excursion : 0.0;
+    if (change <= rounding) break;  // the points moved by no more than the rounding of the coordinates
+    if (!std::isfinite(out.residual) || (out.iterations > 4 && out.residual > previous && out.residual > 1e-6) ||
+        out.iterations > 60)
+      throw RuntimeError("exact start: the Picard iteration for the initial derivatives does not converge (change " +
+                         std::to_string(out.residual) + " of the excursion after " +
+                         std::to_string(out.iterations) + " passes); the time scale tau is too long");
+    // Converged: nothing moves beyond 1e-15 of the excursion, or, once small, two passes in a row stopped
+    // gaining (the rounding floor).
+    if (out.residual <= 1e-15) break;
+    stalled = out.residual < 1e-9 && out.residual > 0.5 * previous ? stalled + 1 : 0;
+    if (stalled >= 2) break;
+    previous = out.residual;
+  }
+  // The polynomial must resolve the motion: its two highest coefficients, relative to the largest, are
+  // ~(ω·tau)^9/9! (1e-15 at ω·tau = 0.1). Far above, the iteration still settles but on a polynomial
+  // that misses the derivatives.
+  double top = 0, all = 0;
+  for (int m = 0; m < kNodes; ++m)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = std::abs(c[static_cast<std::size_t>(m) * n + i]);
+      all = std::max(all, x);
+      if (m >= kNodes - 2) top = std::max(top, x);
+    }
+  if (top > 1e-8 * all)
+    throw RuntimeError("exact start: the time scale tau is too long for the fastest motion (the highest terms "
+                       "of the collocation polynomial are " + std::to_string(top / all) + " of its largest)");
+  out.derivs.assign(6, std::vector<double>(n));
+  std::copy(q0.begin(), q0.end(), out.derivs[0].begin());
+  std::copy(v0.begin(), v0.end(), out.derivs[1].begin());
+  // d^(m+2)q/dt^(m+2) at s = 0 is m!·c_m/tau^m.
+  const double scale[4] = {1.0, 1.0 / tau, 2.0 / (tau * tau), 6.0 / (tau * tau * tau)};
+  for (int m = 0; m < 4; ++m)
+    for (std::size_t i = 0; i < n; ++i)
+      out.derivs[static_cast<std::size_t>(m) + 2][i] = scale[m] * c[static_cast<std::size_t>(m) * n + i];
+  return out;
+}
+
+int start(Integrator& integrator, System& system, double t0, double dt, std::span<const double> q0,
+          std::span<const double> v0, StartKind start, double tau) {
+  auto* gear = dynamic_cast<Gear5*>(&integrator);
+  if (start == StartKind::zero || gear == nullptr) {
+    integrator.start(system, t0, dt, q0, v0);
+    return 0;
+  }
+  const TaylorStart ts = taylor_derivatives(system, t0, q0, v0, tau);
+  gear->start_exact(system, t0, dt, ts.derivs);
+  return ts.evaluations;
 }
 
 // ---------------------------------------------------------------- Gear5

@@ -32,6 +32,15 @@ class System {
 
 enum class IntegratorKind { gear5, verlet };
 
+// How gear5's higher derivatives r3..r5 start (Verlet carries none: both mean the same to it).
+//   zero  : r3 = r4 = r5 = 0, the usual start; limits gear5's global accuracy to O(dt²).
+//   exact : d³q/dt³ .. d⁵q/dt⁵ at t0 from the equations of motion (taylor_derivatives below); gear5 is
+//           then O(dt⁵) on a smooth problem (physics/polygon-dem.md §6).
+enum class StartKind { zero, exact };
+// "zero" or "exact"; UsageError naming `option` otherwise.
+StartKind parse_start_kind(std::string_view name, std::string_view option);
+std::string_view name(StartKind start);
+
 // "gear5" or "verlet"; UsageError naming `option` otherwise.
 IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option);
 std::string_view name(IntegratorKind kind);
@@ -47,8 +56,8 @@ class Integrator {
  public:
   virtual ~Integrator() = default;
   // Sets q(t0) = q0, v(t0) = v0 and evaluates the initial accelerations.
-  // For gear5 the higher derivatives start at zero (the usual start; limits global accuracy to O(dt²)),
-  // unless `jerk_etc` supplies exact scaled derivatives (tests).
+  // For gear5 the higher derivatives start at zero (the usual start; limits global accuracy to O(dt²));
+  // Gear5::start_exact, or start() below with StartKind::exact, gives them exactly.
   virtual void start(System& system, double t0, double dt, std::span<const double> q0,
                      std::span<const double> v0) = 0;
   // Advances by one step of dt.
@@ -74,6 +83,31 @@ class Integrator {
 };
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind);
+
+// The derivatives d^k q/dt^k, k = 0..5, at t0 of the solution through q(t0) = q0, v(t0) = v0, from the
+// equations of motion alone (what Gear5::start_exact needs). Method: the trajectory on [t0 − tau,
+// t0 + tau] as a polynomial collocated at 10 Chebyshev points, found by Picard iteration: the
+// accelerations a(t, q, v) at the points are fitted by a polynomial of degree 9, integrated twice from
+// (q0, v0), and the points moved onto the result, until the points stop moving (to rounding). Then
+// q'' = a(t0), and q''', q'''', q^(5) are the first three derivatives of the fitted a(t) at t0.
+// Velocity- and time-dependent forces and prescribed coordinates enter as they do in a step.
+// tau must resolve the fastest motion: at tau·ω_max = 0.1 a pass contracts the error by ~1e-2 and the
+// polynomial is exact to ~1e-18 relative. RuntimeError if the iteration diverges or the highest terms
+// of the polynomial show that it does not resolve the motion (tau too long).
+struct TaylorStart {
+  std::vector<std::vector<double>> derivs;  // derivs[k][i] = d^k q_i/dt^k at t0, k = 0..5
+  int iterations = 0;                       // Picard passes
+  int evaluations = 0;                      // calls of System::accelerations
+  double residual = 0;                      // last change of the points, relative to their excursion
+};
+TaylorStart taylor_derivatives(System& system, double t0, std::span<const double> q0, std::span<const double> v0,
+                               double tau);
+
+// Starts `integrator` at t0 with step dt from (q0, v0): the usual start, or, for gear5 with
+// start = exact, Gear5::start_exact from taylor_derivatives(system, t0, q0, v0, tau). Returns the
+// force evaluations the exact start spent (0 for the usual start).
+int start(Integrator& integrator, System& system, double t0, double dt, std::span<const double> q0,
+          std::span<const double> v0, StartKind start, double tau);
 
 // Gear's scheme, also usable directly (tests set exact initial derivatives).
 class Gear5 final : public Integrator {

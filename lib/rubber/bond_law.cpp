@@ -61,12 +61,18 @@ CutoffLaw make_cutoff_law(std::string_view name, const LawParams& p, std::string
 AngleLaw make_angle_law(std::string_view name, const LawParams& p, std::string_view key) {
   return make<AngleLaw>(name, p, key);
 }
+ThreeBodyWeight make_three_body_weight(std::string_view name, const LawParams& p, std::string_view key) {
+  return make<ThreeBodyWeight>(name, p, key);
+}
 std::vector<std::string> pair_law_names() { return list_names<PairLaw>(); }
 std::vector<std::string> cutoff_law_names() { return list_names<CutoffLaw>(); }
 std::vector<std::string> angle_law_names() { return list_names<AngleLaw>(); }
+std::vector<std::string> three_body_weight_names() { return list_names<ThreeBodyWeight>(); }
 
-BondLaw make_bond_law(const LawParams& p, std::string_view pair, std::string_view cutoff, std::string_view angle) {
-  return BondLaw{p, make_pair_law(pair, p), make_cutoff_law(cutoff, p), make_angle_law(angle, p)};
+BondLaw make_bond_law(const LawParams& p, std::string_view pair, std::string_view cutoff, std::string_view angle,
+                      std::string_view weight) {
+  return BondLaw{p, make_pair_law(pair, p), make_cutoff_law(cutoff, p), make_angle_law(angle, p),
+                 make_three_body_weight(weight, p)};
 }
 
 }  // namespace frac::rubber

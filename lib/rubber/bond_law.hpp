@@ -172,27 +172,56 @@ struct AngleMarderPairwise : AngleMarder {
   using AngleMarder::AngleMarder;
 };
 
+// ------------------------------------------------------------------------------------------ weight
+// The weight of node i's three-body term. The paper's (`pair`): each ordered pair (j, k) carries
+// h(u_ij) h(u_ik) and nothing else, so a node that has lost a neighbour keeps the rest of its
+// three-body sum, which is not bounded below at a free surface (rubber-lattice-validation.md §D.4).
+// `all_bonds` (not in the paper; a lever for running cracks): node i's whole three-body term is
+// multiplied by W_i = Π_{s=1..6} h(u_is), the product of the cut-offs of all six slots (a missing or
+// removed neighbour counts as h = 0), so a node that loses a neighbour fades to the bounded pair law:
+//
+//   E_i = Σ_s f(u_is) + W_i Σ_{j≠k} h_j h_k g(a_j·a_k),   ∂W_i/∂a_s = (Π_{t≠s} h_t) h'_s â_s.
+//
+// With complete shells and bonds far below u_c, W_i = 1 (exactly for a compact cut-off, up to the Fermi
+// tail otherwise): the far field is still Mooney-Rivlin. Free edges and crack faces carry the pair law.
+// `all_bonds` is a compile-time switch of the force loop (forces.cpp), so the default costs nothing.
+struct WeightPair {
+  static constexpr std::string_view name = "pair";
+  static constexpr bool all_bonds = false;
+  explicit WeightPair(const LawParams&) {}
+};
+struct WeightAllBonds {
+  static constexpr std::string_view name = "all_bonds";
+  static constexpr bool all_bonds = true;
+  explicit WeightAllBonds(const LawParams&) {}
+};
+
 // ------------------------------------------------------------------------------------------ registry
 using PairLaw = std::variant<PairMarder, PairMarderC1, PairMarderSoft>;
 using CutoffLaw = std::variant<CutoffFermi, CutoffSmoothstep, CutoffNone>;
 using AngleLaw = std::variant<AngleMarder, AngleMarderPairwise>;
+using ThreeBodyWeight = std::variant<WeightPair, WeightAllBonds>;
 
 // The evaluator of that name; UsageError naming `key` and listing the names otherwise.
 PairLaw make_pair_law(std::string_view name, const LawParams& p, std::string_view key = "law.pair");
 CutoffLaw make_cutoff_law(std::string_view name, const LawParams& p, std::string_view key = "law.cutoff");
 AngleLaw make_angle_law(std::string_view name, const LawParams& p, std::string_view key = "law.angle");
+ThreeBodyWeight make_three_body_weight(std::string_view name, const LawParams& p,
+                                       std::string_view key = "law.three_body_weight");
 std::vector<std::string> pair_law_names();
 std::vector<std::string> cutoff_law_names();
 std::vector<std::string> angle_law_names();
+std::vector<std::string> three_body_weight_names();
 
-// The whole law: parameters and the three evaluators.
+// The whole law: parameters, the three evaluators and the three-body weight.
 struct BondLaw {
   LawParams params;
   PairLaw pair{PairMarder(params)};
   CutoffLaw cutoff{CutoffFermi(params)};
   AngleLaw angle{AngleMarder(params)};
+  ThreeBodyWeight weight{WeightPair(params)};
 };
 BondLaw make_bond_law(const LawParams& p, std::string_view pair = "marder", std::string_view cutoff = "fermi",
-                      std::string_view angle = "marder");
+                      std::string_view angle = "marder", std::string_view weight = "pair");
 
 }  // namespace frac::rubber

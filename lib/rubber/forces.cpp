@@ -35,9 +35,26 @@ inline void load_slots(const ForceContext& c, std::size_t i, Slots& s) {
   }
 }
 
+// The weight W = Π_s h_s of a node's three-body term (WeightAllBonds) and, for each slot, the product of
+// the other five, Π_{t≠s} h_t = ∂W/∂h_s (prefix and suffix products: no division, exact when an h is 0).
+inline double all_bonds_weight(const Slots& s, double* others) {
+  double prefix[6], suffix = 1;
+  double p = 1;
+  for (int k = 0; k < 6; ++k) {
+    prefix[k] = p;
+    p *= s.h[k];
+  }
+  for (int k = 5; k >= 0; --k) {
+    others[k] = prefix[k] * suffix;
+    suffix *= s.h[k];
+  }
+  return p;
+}
+
 // Three-body energy T_i and the derivatives D(i,s) (pair term included) for a quadratic g, through the
-// moments of the neighbour vectors. With Energy, only T is computed.
-template <bool Energy, class G>
+// moments of the neighbour vectors. With Energy, only T is computed. With the weight over all bonds
+// (Wt::all_bonds) the three-body part is W T, and its derivative W ∂T/∂a_s + T (Π_{t≠s} h_t) h'_s â_s.
+template <bool Energy, class Wt, class G>
 inline double centre_moments(const G& g, const Slots& s, double* D) {
   double H1 = 0, H2 = 0, Sx = 0, Sy = 0, Mxx = 0, Mxy = 0, Myy = 0, P2 = 0, P4 = 0;
   for (int k = 0; k < 6; ++k) {
@@ -56,7 +73,29 @@ inline double centre_moments(const G& g, const Slots& s, double* D) {
     P4 += q * r2;
   }
   const double c2 = g.c2, c1 = g.c1, c0 = g.c0;
-  if constexpr (Energy) {
+  if constexpr (Wt::all_bonds) {
+    double others[6];
+    const double W = all_bonds_weight(s, others);
+    const double T =
+        c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
+    if constexpr (Energy) {
+      return W * T;
+    } else {
+      const double c2_4W = 4 * c2 * W, c1_2W = 2 * c1 * W;
+      for (int k = 0; k < 6; ++k) {
+        const double h = s.h[k], ax = s.ax[k], ay = s.ay[k];
+        const double r2 = ax * ax + ay * ay;
+        const double Max = Mxx * ax + Mxy * ay, May = Mxy * ax + Myy * ay;
+        const double aMa = ax * Max + ay * May, Sa = Sx * ax + Sy * ay;
+        const double hr2 = h * r2;
+        const double coef = 2 * (c2 * (aMa - hr2 * r2) + c1 * (Sa - hr2) + c0 * (H1 - h));
+        const double along = (W * coef + T * others[k]) * s.hpu[k] + s.fpu[k];
+        D[2 * k] = h * (c2_4W * (Max - hr2 * ax) + c1_2W * (Sx - h * ax)) + along * ax;
+        D[2 * k + 1] = h * (c2_4W * (May - hr2 * ay) + c1_2W * (Sy - h * ay)) + along * ay;
+      }
+      return 0;
+    }
+  } else if constexpr (Energy) {
     return c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
   } else {
     const double c2_4 = 4 * c2, c1_2 = 2 * c1;
@@ -77,7 +116,7 @@ inline double centre_moments(const G& g, const Slots& s, double* D) {
 }
 
 // The same by the loop over the 15 unordered pairs of slots (30 ordered pairs): any g.
-template <bool Energy, class G>
+template <bool Energy, class Wt, class G>
 inline double centre_pairs(const G& g, const Slots& s, double* D) {
   double S1[6] = {}, S2x[6] = {}, S2y[6] = {};
   double T = 0;
@@ -95,23 +134,38 @@ inline double centre_pairs(const G& g, const Slots& s, double* D) {
         S2y[k] += s.h[j] * gv.d * s.ay[j];
       }
     }
-  if constexpr (!Energy) {
-    for (int k = 0; k < 6; ++k) {
-      const double along = 2 * s.hpu[k] * S1[k] + s.fpu[k];
-      D[2 * k] = 2 * s.h[k] * S2x[k] + along * s.ax[k];
-      D[2 * k + 1] = 2 * s.h[k] * S2y[k] + along * s.ay[k];
+  if constexpr (Wt::all_bonds) {
+    double others[6];
+    const double W = all_bonds_weight(s, others);
+    if constexpr (Energy) {
+      return W * T;
+    } else {
+      for (int k = 0; k < 6; ++k) {
+        const double along = (2 * W * S1[k] + T * others[k]) * s.hpu[k] + s.fpu[k];
+        D[2 * k] = 2 * W * s.h[k] * S2x[k] + along * s.ax[k];
+        D[2 * k + 1] = 2 * W * s.h[k] * S2y[k] + along * s.ay[k];
+      }
+      return 0;
     }
+  } else {
+    if constexpr (!Energy) {
+      for (int k = 0; k < 6; ++k) {
+        const double along = 2 * s.hpu[k] * S1[k] + s.fpu[k];
+        D[2 * k] = 2 * s.h[k] * S2x[k] + along * s.ax[k];
+        D[2 * k + 1] = 2 * s.h[k] * S2y[k] + along * s.ay[k];
+      }
+    }
+    return T;
   }
-  return T;
 }
 
-template <bool Energy, class G>
+template <bool Energy, class Wt, class G>
 inline double centre(const G& g, const Slots& s, double* D) {
-  if constexpr (G::quadratic) return centre_moments<Energy>(g, s, D);
-  else return centre_pairs<Energy>(g, s, D);
+  if constexpr (G::quadratic) return centre_moments<Energy, Wt>(g, s, D);
+  else return centre_pairs<Energy, Wt>(g, s, D);
 }
 
-template <class P, class H, class G, DampingKind K>
+template <class P, class H, class G, DampingKind K, class Wt>
 struct Passes {
   static void bonds(ForceContext& c, std::size_t i0, std::size_t i1, int worker) {
     const P& pair = *static_cast<const P*>(c.pair);
@@ -176,7 +230,7 @@ struct Passes {
     Slots s;
     for (std::size_t i = i0; i < i1; ++i) {
       load_slots(c, i, s);
-      centre<false>(g, s, c.D + 12 * i);
+      centre<false, Wt>(g, s, c.D + 12 * i);
     }
   }
 
@@ -241,7 +295,7 @@ struct Passes {
           }
         }
         load_slots(c, i, s);
-        et += centre<true>(g, s, nullptr);
+        et += centre<true, Wt>(g, s, nullptr);
       }
       c.block_energy[2 * k] = ep;
       c.block_energy[2 * k + 1] = et;
@@ -273,26 +327,27 @@ void virial_blocks(ForceContext& c, std::size_t k0, std::size_t k1) {
 
 ForcePasses select_passes(const BondLaw& law, DampingKind damping) {
   return std::visit(
-      [damping](const auto& p, const auto& h, const auto& g) -> ForcePasses {
+      [damping](const auto& p, const auto& h, const auto& g, const auto& w) -> ForcePasses {
         using P = std::decay_t<decltype(p)>;
         using H = std::decay_t<decltype(h)>;
         using G = std::decay_t<decltype(g)>;
+        using W = std::decay_t<decltype(w)>;
         switch (damping) {
           case DampingKind::uniform: {
-            using T = Passes<P, H, G, DampingKind::uniform>;
+            using T = Passes<P, H, G, DampingKind::uniform, W>;
             return {&T::bonds, &T::centres, &T::gather, &T::energy};
           }
           case DampingKind::near_failure: {
-            using T = Passes<P, H, G, DampingKind::near_failure>;
+            using T = Passes<P, H, G, DampingKind::near_failure, W>;
             return {&T::bonds, &T::centres, &T::gather, &T::energy};
           }
           default: {
-            using T = Passes<P, H, G, DampingKind::none>;
+            using T = Passes<P, H, G, DampingKind::none, W>;
             return {&T::bonds, &T::centres, &T::gather, &T::energy};
           }
         }
       },
-      law.pair, law.cutoff, law.angle);
+      law.pair, law.cutoff, law.angle, law.weight);
 }
 
 }  // namespace frac::rubber

@@ -1,7 +1,7 @@
 #pragma once
 // The force and energy loops of the rubber lattice, written once over the bond-law evaluators
-// (bond_law.hpp) and instantiated for each combination of laws and damping. Three passes, each a
-// loop over nodes split into contiguous ranges across the threads:
+// (bond_law.hpp) and instantiated for each combination of laws, three-body weight and damping. Three
+// passes, each a loop over nodes split into contiguous ranges across the threads:
 //
 //   1. bonds:   for each forward bond b (3 per node): bond vector, h, h'/u, f'/u, the damping
 //               coefficient, once per bond (the exponential of h is the costly part).
@@ -10,6 +10,8 @@
 //               For a quadratic g (Marder's) the three-body sum is written through the moments
 //               S = Σ h a, M = Σ h a aᵀ (O(6) work instead of the 30 ordered pairs):
 //                 T = c2(‖M‖² − Σh²|a|⁴) + c1(|S|² − Σh²|a|²) + c0((Σh)² − Σh²).
+//               With the three-body weight all_bonds (bond_law.hpp) the node's three-body part is
+//               W T, W = Π_s h_s, and D carries T ∂W/∂a_s as well (a separate instantiation).
 //   3. gather:  F_i = Σ_s D(i,s) − Σ_s D(nbr(i,s), s+3 mod 6)   (translation invariance of E_i),
 //               plus Kelvin damping along bonds; a_i = F_i / m.
 //

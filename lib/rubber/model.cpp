@@ -207,13 +207,22 @@ void Model::clamp(std::span<const std::size_t> nodes, std::span<const double> q)
   for (std::size_t i : clamped_) prescribed_.push_back(i);
   for (std::size_t i : clamped_) prescribed_.push_back(n + i);
   for (std::size_t k : prescribed_) clamp_q_.push_back(q[k]);
+  clamp_v_.assign(prescribed_.size(), 0.0);
+  clamp_until_ = 0;
 }
 
-void Model::prescribe(double, std::span<double> q, std::span<double> v, std::span<double> a) const {
+void Model::clamp(std::span<const std::size_t> nodes, std::span<const double> q, std::span<const double> v,
+                  double until) {
+  clamp(nodes, q);
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) clamp_v_[k] = v[prescribed_[k]];
+  clamp_until_ = until;
+}
+
+void Model::prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const {
   for (std::size_t k = 0; k < prescribed_.size(); ++k) {
     const std::size_t c = prescribed_[k];
-    q[c] = clamp_q_[k];
-    v[c] = 0;
+    q[c] = clamp_q_[k] + clamp_v_[k] * std::min(t, clamp_until_);
+    v[c] = t < clamp_until_ ? clamp_v_[k] : 0.0;
     a[c] = 0;
   }
 }

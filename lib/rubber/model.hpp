@@ -69,8 +69,11 @@ class Model final : public dynamics::System {
   // cut-off) and a lower cut-off. Returns how many bonds it raised.
   std::size_t toughen(std::span<const double> q, double trigger, double cutoff);
 
-  // Clamps: the given nodes keep the positions they have in q, with zero velocity.
+  // Clamps: the given nodes keep the positions they have in q, with zero velocity; or, with v and
+  // `until` > 0, move at the constant velocity v (per coordinate, like q) from q at t = 0 until `until`,
+  // then stay.
   void clamp(std::span<const std::size_t> nodes, std::span<const double> q);
+  void clamp(std::span<const std::size_t> nodes, std::span<const double> q, std::span<const double> v, double until);
   std::span<const std::size_t> clamped_nodes() const { return clamped_; }
 
   // dynamics::System
@@ -125,7 +128,9 @@ class Model final : public dynamics::System {
   std::vector<BondData> bond_;
   std::vector<double> D_, blocks_, scratch_a_, zero_v_;
   std::vector<std::size_t> clamped_, prescribed_;
-  std::vector<double> clamp_q_;  // positions of the prescribed coordinates
+  std::vector<double> clamp_q_;  // positions of the prescribed coordinates (at t = 0)
+  std::vector<double> clamp_v_;  // their velocities until clamp_until_ (zero for fixed clamps)
+  double clamp_until_ = 0;
   std::vector<std::uint8_t> face_;  // per node, for toughen()
   bool fused_ = false;
   std::size_t rows_ = 0, row_len_ = 0;

@@ -31,12 +31,18 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   model.set_box(su.F);
   sys.path = std::make_unique<CrackPath>(mesh, L);
 
-  // Homogeneous pre-stretch about the origin of the mesh: the sheet starts in equilibrium.
+  // Homogeneous pre-stretch about the origin of the mesh: the sheet starts in equilibrium. With
+  // loading.ramp_time, it starts at λy = loading.ramp_from_y instead, moving at the homogeneous stretch rate
+  // (v_y = λ̇y r_y, so no wave starts from the grips), which the clamped rows keep until ramp_time.
+  Eigen::Matrix2d F0 = su.F;
+  const double rate_y = sc.ramp_time > 0 ? (sc.stretch_y - sc.ramp_from_y) / sc.ramp_time : 0.0;
+  if (sc.ramp_time > 0) F0(1, 1) = sc.ramp_from_y;
   sys.q0.resize(2 * n);
   sys.v0.assign(2 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    sys.q0[i] = su.F(0, 0) * L.rx[i] + su.F(0, 1) * L.ry[i];
-    sys.q0[n + i] = su.F(1, 0) * L.rx[i] + su.F(1, 1) * L.ry[i];
+    sys.q0[i] = F0(0, 0) * L.rx[i] + F0(0, 1) * L.ry[i];
+    sys.q0[n + i] = F0(1, 0) * L.rx[i] + F0(1, 1) * L.ry[i];
+    sys.v0[n + i] = rate_y * L.ry[i];
   }
 
   // The seed crack, along the mesh's crack line from the left edge.
@@ -65,7 +71,10 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   for (std::size_t j = 0; j < ny && (kr > 0 || kc > 0); ++j)
     for (std::size_t i = 0; i < nx; ++i)
       if (j < kr || j + kr >= ny || i < kc || i + kc >= nx) clamped.push_back(j * nx + i);
-  if (!clamped.empty()) model.clamp(clamped, sys.q0);
+  if (!clamped.empty()) {
+    if (sc.ramp_time > 0) model.clamp(clamped, sys.q0, sys.v0, sc.ramp_time);
+    else model.clamp(clamped, sys.q0);
+  }
 
   // Thermal noise: uniform velocities with zero mean over the free nodes.
   if (sc.noise > 0) {
@@ -78,7 +87,7 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
       for (int c = 0; c < 2; ++c) {
         const double v = rng.uniform(-sc.noise, sc.noise);
         if (fixed[i]) continue;
-        sys.v0[static_cast<std::size_t>(c) * n + i] = v;
+        sys.v0[static_cast<std::size_t>(c) * n + i] += v;
         mean[c] += v;
       }
     for (std::size_t i = 0; i < n; ++i) free += fixed[i] ? 0 : 1;
@@ -97,7 +106,10 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
       sys.v0[n + j] -= yi * sc.tip_kick;
     }
   }
-  for (std::size_t i : clamped) sys.v0[i] = sys.v0[n + i] = 0;
+  for (std::size_t i : clamped) {
+    sys.v0[i] = 0;
+    sys.v0[n + i] = rate_y * L.ry[i];
+  }
   return sys;
 }
 

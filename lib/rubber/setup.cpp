@@ -37,6 +37,7 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   r.pair = s.choice("law.pair", r.pair, pair_law_names());
   r.cutoff = s.choice("law.cutoff", r.cutoff, cutoff_law_names());
   r.angle = s.choice("law.angle", r.angle, angle_law_names());
+  r.three_body_weight = s.choice("law.three_body_weight", r.three_body_weight, three_body_weight_names());
   r.short_width = s.positive("law.short_width", 0.1 * d);
   r.cutoff_length = s.positive("law.cutoff_length", 3.5 * d);
   r.cutoff_width = s.positive("law.cutoff_width", 0.05 * d);
@@ -82,6 +83,12 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
     throw UsageError(s.name() + ": boundary.periodic = " + periodic + " leaves no top and bottom rows to clamp");
   if (r.periodic_x && r.clamp_columns > 0)
     throw UsageError(s.name() + ": boundary.periodic = " + periodic + " leaves no side columns to clamp");
+  // Stretching with the seed in place: the sheet starts at (λx, ramp_from_y), the whole sheet moving at the
+  // homogeneous stretch rate, and the clamped rows reach stretch_y at ramp_time, then stay.
+  r.ramp_time = s.non_negative("loading.ramp_time", 0.0);
+  r.ramp_from_y = s.positive("loading.ramp_from_y", r.stretch_y);
+  if (r.ramp_time > 0 && (r.clamp_rows == 0 || r.periodic_y))
+    throw UsageError(s.name() + ": loading.ramp_time needs clamped top and bottom rows (boundary.clamp_rows)");
 
   r.seed_length = s.non_negative("crack.seed_length", 0.0);
   r.tip_kick = s.non_negative("crack.tip_kick", 0.0);
@@ -178,7 +185,7 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
   p.short_width = sc.short_width;
   p.cutoff = sc.cutoff_length;
   p.cutoff_width = sc.cutoff_width;
-  su.law = make_bond_law(p, sc.pair, sc.cutoff, sc.angle);
+  su.law = make_bond_law(p, sc.pair, sc.cutoff, sc.angle, sc.three_body_weight);
   su.F = Eigen::Matrix2d{{sc.stretch_x, 0}, {0, sc.stretch_y}};
   const bool rows_x = mesh.rows_along != "y";
   for (int f = 0; f < 3; ++f) {
@@ -203,7 +210,8 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
     if (sc.toughening) {
       LawParams tp = p;
       tp.cutoff = sc.toughening_cutoff;
-      cutoffs.emplace_back(sc.toughening_cutoff, make_bond_law(tp, sc.pair, sc.cutoff, sc.angle));
+      cutoffs.emplace_back(sc.toughening_cutoff,
+                           make_bond_law(tp, sc.pair, sc.cutoff, sc.angle, sc.three_body_weight));
     }
     for (const auto& [uc, law] : cutoffs)
       for (double k : {0.21, 0.5, 0.79, 1.0, 1.32}) {

@@ -27,6 +27,7 @@ struct RubberScene {
   double a = 1600, b = 1.5;                 // m^2/s^2, 1
   // [law]
   std::string pair = "marder", cutoff = "fermi", angle = "marder";
+  std::string three_body_weight = "pair";  // pair | all_bonds (bond_law.hpp)
   double short_width = 0, cutoff_length = 0, cutoff_width = 0;  // m
   // [physics] and their parameters
   bool damping = false;
@@ -40,6 +41,8 @@ struct RubberScene {
   // [loading]
   std::string kind = "stretch";  // stretch | wave
   double stretch_x = 1, stretch_y = 1;
+  double ramp_time = 0;    // s: 0, pre-stretched; > 0, the clamped rows move from ramp_from_y to stretch_y
+  double ramp_from_y = 0;  // λy at t = 0 when ramp_time > 0
   // [boundary]
   long long clamp_rows = 0, clamp_columns = 0;
   bool periodic_x = false, periodic_y = false;

@@ -1,13 +1,15 @@
 #pragma once
 // Shared by the rubber unit tests: the bond law in natural units (Δ = m = a = 1, b given), with the
-// short-bond width us, the cut-off uc and its width w; evaluators chosen by name (defaults: the paper's).
+// short-bond width us, the cut-off uc and its width w; evaluators and the three-body weight chosen by name
+// (defaults: the paper's).
 #include "rubber/bond_law.hpp"
 #include "rubber/mooney_rivlin.hpp"
 
 namespace frac::rubber::test {
 
 inline BondLaw natural_law(double b, double us, double uc, double w, const char* pair = "marder",
-                           const char* cutoff = "fermi", const char* angle = "marder") {
+                           const char* cutoff = "fermi", const char* angle = "marder",
+                           const char* weight = "pair") {
   LawParams p;
   p.spacing = 1;
   p.A = mr::lattice_A(1, 1, 1);
@@ -15,7 +17,7 @@ inline BondLaw natural_law(double b, double us, double uc, double w, const char*
   p.short_width = us;
   p.cutoff = uc;
   p.cutoff_width = w;
-  return make_bond_law(p, pair, cutoff, angle);
+  return make_bond_law(p, pair, cutoff, angle, weight);
 }
 
 }  // namespace frac::rubber::test

@@ -442,7 +442,7 @@ TEST(DemModel, AutoTimeStepIsStableWithDampingAndFriction) {
 
 // ------------------------------------------------------------------ physics switches
 
-// Steps two simulations side by side (the run's loop: step, then the breaking pass) and reports the
+// Steps two simulations side by side (the run's loop: step, then the breaking pass if on) and reports the
 // first step at which their states, forces or broken beams differ in any bit (−1 if none), and how many
 // beams the first one broke.
 struct Comparison {
@@ -463,8 +463,8 @@ Comparison compare(const CellMesh& mesh, const frac::dem::DemScene& a, const fra
   for (int s = 1; s <= steps; ++s) {
     sa.integrator->step(sa.model);
     sb.integrator->step(sb.model);
-    sa.model.beams().break_beams(sa.integrator->q(), a.material.t_eps, a.material.t_theta, ba);
-    sb.model.beams().break_beams(sb.integrator->q(), b.material.t_eps, b.material.t_theta, bb);
+    if (a.physics.breaking) sa.model.beams().break_beams(sa.integrator->q(), a.material.t_eps, a.material.t_theta, ba);
+    if (b.physics.breaking) sb.model.beams().break_beams(sb.integrator->q(), b.material.t_eps, b.material.t_theta, bb);
     bool equal = same(sa.integrator->q(), sb.integrator->q()) && same(sa.integrator->v(), sb.integrator->v()) &&
                  same(sa.model.forces(), sb.model.forces()) && ba.size() == bb.size();
     for (std::size_t k = 0; equal && k < ba.size(); ++k) equal = ba[k].beam == bb[k].beam;
@@ -572,6 +572,21 @@ TEST(DemModel, ContactsWithZeroModulusEqualContactsOff) {
   EXPECT_NE(compare(mesh, off, on, kSteps).first_difference, -1);
 }
 
+// Beams on with E = 0 against beams off (breaking off in both): beam_stiffness gives α = β = δ = 0, so
+// every beam adds ±0 to the force sums (unchanged bits, as above) and nothing to the time-step bound.
+// (Before beam_stiffness special-cased E = 0, δ = β(b/c + 1/3) was 0·∞/∞ = NaN and the run stopped.)
+TEST(DemModel, BeamsWithZeroModulusEqualBeamsOff) {
+  const CellMesh mesh = disc_mesh(200, 9);
+  const std::vector<std::pair<std::string, std::string>> base{{"stop.t_max", "8e-4"}, {"physics.breaking", "off"}};
+  const auto off = load_scene("explosion", with(base, {{"physics.beams", "off"}}));
+  const auto on = load_scene("explosion", with(base, {{"material.beam_modulus", "0"}}));
+  const Comparison c = compare(mesh, off, on, kSteps);
+  EXPECT_EQ(c.first_difference, -1);
+  EXPECT_GT(c.contacts, 100u);
+  const auto stiff = load_scene("explosion", base);
+  EXPECT_NE(compare(mesh, off, stiff, kSteps).first_difference, -1);
+}
+
 // ------------------------------------------------------------------ the time step
 
 TEST(DemModel, TimeStepAboveTheBoundIsRefused) {
@@ -646,6 +661,70 @@ TEST(DemModel, MaxEigenfrequencyAgainstDenseSolver) {
                 omega_true, omega / omega_true);
     EXPECT_GE(omega, omega_true);
     EXPECT_LE(omega, 1.03 * omega_true);
+  }
+}
+
+// ------------------------------------------------------------------ integrator.start (issue 7 §1)
+
+// The scene key integrator.start on the smooth problem (the pulse scene with contacts off: beams only,
+// no breaking, damping or friction) of a 100-cell disc, to T = 40 steps at the gear5 bound. Final positions
+// at 2^0 and 2^-1 of the bound against gear5-exact at 2^-4: with the usual start the error halves twice
+// per halving of dt (order 2), with integrator.start = exact five times (order 5; pipelines/accuracy-cost.mk
+// measures 5.08 on the 1100-cell disc). The exact start costs a few dozen force evaluations, reported;
+// Verlet accepts the key and runs exactly as without it.
+TEST(DemModel, ExactStartMakesGear5FifthOrderOnTheSmoothProblem) {
+  const CellMesh mesh = disc_mesh(100, 3);
+  const long long n0 = 40;
+  auto scene_for = [&](const std::string& kind, const std::string& start, double dt, long long steps) {
+    std::ostringstream text;
+    text.precision(17);
+    text << dt;
+    return load_scene("pulse", {{"physics.contacts", "off"},
+                                {"integrator.kind", kind},
+                                {"integrator.start", start},
+                                {"integrator.dt", text.str()},
+                                {"stop.t_max", "1"},
+                                {"stop.max_steps", std::to_string(steps)}});
+  };
+  const double bound = frac::dem::Simulation(mesh, scene_for("gear5", "zero", 1e-9, 1)).time_step.bound;
+  // Final positions (x, y) after n0·2^level steps of bound/2^level: every run ends at the same time.
+  auto final_q = [&](const std::string& kind, const std::string& start, int level, int* evaluations = nullptr) {
+    const frac::dem::DemScene d = scene_for(kind, start, 0.999 * bound / (1 << level), n0 << level);
+    EXPECT_EQ(d.integrator.start, start == "exact" ? frac::dynamics::StartKind::exact : frac::dynamics::StartKind::zero);
+    frac::dem::Simulation sim(mesh, d);
+    frac::Progress progress("test", true);
+    const auto summary = sim.run(nullptr, progress);
+    EXPECT_EQ(summary.steps, n0 << level);
+    if (evaluations) *evaluations = summary.start_evaluations;
+    const auto q = sim.integrator->q();
+    return std::vector<double>(q.begin(), q.begin() + 2 * static_cast<std::ptrdiff_t>(mesh.cells()));
+  };
+  auto rms = [](const std::vector<double>& a, const std::vector<double>& b) {
+    double s = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+    return std::sqrt(2 * s / static_cast<double>(a.size()));
+  };
+  int evaluations = 0;
+  const auto ref = final_q("gear5", "exact", 4, &evaluations);
+  const double z0 = rms(final_q("gear5", "zero", 0), ref), z1 = rms(final_q("gear5", "zero", 1), ref);
+  const double e0 = rms(final_q("gear5", "exact", 0), ref), e1 = rms(final_q("gear5", "exact", 1), ref);
+  const double pz = std::log2(z0 / z1), pe = std::log2(e0 / e1);
+  std::printf("[ start    ] pulse, beams only, 100 cells: gear5 zero start %.3g -> %.3g m (order %.2f), exact start "
+              "%.3g -> %.3g m (order %.2f); the exact start took %d force evaluations\n",
+              z0, z1, pz, e0, e1, pe, evaluations);
+  EXPECT_NEAR(pz, 2.0, 0.3);
+  EXPECT_NEAR(pe, 5.0, 0.6);
+  EXPECT_LT(e0, 1e-2 * z0);
+  EXPECT_GT(evaluations, 0);
+  EXPECT_LE(evaluations, 150);
+  // Verlet: the key changes nothing.
+  EXPECT_EQ(final_q("verlet", "exact", 0), final_q("verlet", "zero", 0));
+  // A value it does not know is refused, naming the key.
+  try {
+    (void)scene_for("gear5", "taylor", 1e-9, 1);
+    ADD_FAILURE() << "integrator.start = taylor accepted";
+  } catch (const frac::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("integrator.start"), std::string::npos) << e.what();
   }
 }
 

@@ -81,11 +81,19 @@ struct Exact {
   }
 };
 
+// How a run starts: the usual start, gear5 from the exact derivatives of Exact, or gear5 from the
+// derivatives the library computes from the equations of motion (dynamics::taylor_derivatives, what
+// dem-run's integrator.start = exact uses), with tau = 0.1/ω.
+enum class Start { usual, exact, taylor };
+
 // Largest error against the exact solution over 20 sample times in (0, T].
-double run_error(Integrator& in, Oscillator& sys, const Exact& ex, double T, int steps, bool exact_start) {
+double run_error(Integrator& in, Oscillator& sys, const Exact& ex, double T, int steps, Start start) {
   const double dt = T / steps;
-  if (exact_start) {
+  if (start == Start::exact) {
     dynamic_cast<Gear5&>(in).start_exact(sys, 0.0, dt, ex.derivatives());
+  } else if (start == Start::taylor) {
+    const std::vector<double> q0{ex.x0}, v0{ex.v0};
+    frac::dynamics::start(in, sys, 0.0, dt, q0, v0, frac::dynamics::StartKind::exact, 0.1 / ex.omega);
   } else {
     const std::vector<double> q0{ex.x0}, v0{ex.v0};
     in.start(sys, 0.0, dt, q0, v0);
@@ -121,14 +129,14 @@ struct Convergence {
   double p;
 };
 
-Convergence measure(Integrator& in, double gamma, double T, int steps0, bool exact_start) {
+Convergence measure(Integrator& in, double gamma, double T, int steps0, Start start) {
   const Exact ex{1.0, gamma};
   Oscillator sys(ex.omega, ex.gamma);
   Convergence c;
   for (int k = 0; k < 5; ++k) {
     const int steps = steps0 << k;
     c.dt.push_back(T / steps);
-    c.err.push_back(run_error(in, sys, ex, T, steps, exact_start));
+    c.err.push_back(run_error(in, sys, ex, T, steps, start));
   }
   c.p = order(c.dt, c.err);
   return c;
@@ -283,7 +291,7 @@ TEST(Integrator, DampingStabilityEdges) {
 TEST(Integrator, Gear5ExactStartIsFifthOrderOnHarmonicOscillator) {
   Gear5 g;
   const double T = 6 * std::numbers::pi;
-  const auto c = measure(g, 0.0, T, 100, true);
+  const auto c = measure(g, 0.0, T, 100, Start::exact);
   print("gear5, exact start, harmonic", c);
   EXPECT_NEAR(c.p, 5.0, 0.5);
 }
@@ -291,7 +299,7 @@ TEST(Integrator, Gear5ExactStartIsFifthOrderOnHarmonicOscillator) {
 TEST(Integrator, Gear5ExactStartOnDampedOscillator) {
   Gear5 g;
   const double T = 6 * std::numbers::pi;
-  const auto c = measure(g, 0.2, T, 100, true);
+  const auto c = measure(g, 0.2, T, 100, Start::exact);
   print("gear5, exact start, damped (gamma = 0.2 omega)", c);
   // Velocity-dependent force: the note measures 5.0 here too (validation E9).
   EXPECT_NEAR(c.p, 5.0, 0.5);
@@ -300,19 +308,68 @@ TEST(Integrator, Gear5ExactStartOnDampedOscillator) {
 TEST(Integrator, Gear5UsualStartIsOnlySecondOrder) {
   Gear5 g;
   const double T = 6 * std::numbers::pi;
-  const auto c = measure(g, 0.0, T, 100, false);
+  const auto c = measure(g, 0.0, T, 100, Start::usual);
   print("gear5, usual start (r3..r5 = 0), harmonic", c);
   EXPECT_LT(c.p, 3.0);
   EXPECT_GT(c.p, 1.5);
 }
 
+// The exact start from the equations of motion alone (dynamics::taylor_derivatives): its derivatives
+// agree with the analytic ones (ω = 1: q'' .. q'''' to 1e-12, q^(5) to 1e-10; damped, so that the velocity
+// dependence enters too), and gear5 started from them converges at order 5 like the analytic start.
+TEST(Integrator, TaylorDerivativesFromTheEquationsOfMotion) {
+  const Exact ex{1.0, 0.2};
+  Oscillator sys(ex.omega, ex.gamma);
+  const std::vector<double> q0{ex.x0}, v0{ex.v0};
+  const auto ts = frac::dynamics::taylor_derivatives(sys, 0.0, q0, v0, 0.1 / ex.omega);
+  const auto want = ex.derivatives();
+  ASSERT_EQ(ts.derivs.size(), 6u);
+  // The rounding of the accelerations (1e-16) is amplified by 1/tau^(k-2) in the k-th derivative.
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_NEAR(ts.derivs[k][0], want[k][0], k < 5 ? 1e-12 : 1e-10) << "derivative " << k;
+  std::printf("[ taylor   ] %d Picard passes, %d force evaluations, residual %.2g\n", ts.iterations, ts.evaluations,
+              ts.residual);
+  EXPECT_LE(ts.evaluations, 150);
+  // A tau far beyond the fastest motion makes the iteration diverge: refused, not silently wrong.
+  EXPECT_THROW(frac::dynamics::taylor_derivatives(sys, 0.0, q0, v0, 10.0 / ex.omega), frac::RuntimeError);
+}
+
+TEST(Integrator, Gear5TaylorStartIsFifthOrder) {
+  Gear5 g;
+  const double T = 6 * std::numbers::pi;
+  const auto h = measure(g, 0.0, T, 100, Start::taylor);
+  print("gear5, start from taylor_derivatives, harmonic", h);
+  EXPECT_NEAR(h.p, 5.0, 0.5);
+  const auto d = measure(g, 0.2, T, 100, Start::taylor);
+  print("gear5, start from taylor_derivatives, damped", d);
+  EXPECT_NEAR(d.p, 5.0, 0.5);
+  // Verlet carries no higher derivatives: an exact start is its usual start.
+  VelocityVerlet a, b;
+  Oscillator sys(1.0, 0.0);
+  const std::vector<double> q0{1.0}, v0{0.5};
+  EXPECT_EQ(frac::dynamics::start(a, sys, 0.0, 0.1, q0, v0, frac::dynamics::StartKind::exact, 0.1), 0);
+  b.start(sys, 0.0, 0.1, q0, v0);
+  for (int s = 0; s < 10; ++s) {
+    a.step(sys);
+    b.step(sys);
+  }
+  EXPECT_EQ(a.q()[0], b.q()[0]);
+}
+
+TEST(Integrator, ParseStartKind) {
+  EXPECT_EQ(frac::dynamics::parse_start_kind("zero", "k"), frac::dynamics::StartKind::zero);
+  EXPECT_EQ(frac::dynamics::parse_start_kind("exact", "k"), frac::dynamics::StartKind::exact);
+  EXPECT_THROW(frac::dynamics::parse_start_kind("taylor", "integrator.start"), frac::UsageError);
+  EXPECT_EQ(frac::dynamics::name(frac::dynamics::StartKind::exact), "exact");
+}
+
 TEST(Integrator, VerletIsSecondOrder) {
   VelocityVerlet vv;
   const double T = 6 * std::numbers::pi;
-  const auto h = measure(vv, 0.0, T, 200, false);
+  const auto h = measure(vv, 0.0, T, 200, Start::usual);
   print("verlet, harmonic", h);
   EXPECT_NEAR(h.p, 2.0, 0.2);
-  const auto d = measure(vv, 0.2, T, 200, false);
+  const auto d = measure(vv, 0.2, T, 200, Start::usual);
   print("verlet, damped (gamma = 0.2 omega)", d);
   EXPECT_NEAR(d.p, 2.0, 0.2);
 }

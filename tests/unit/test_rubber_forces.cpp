@@ -317,6 +317,106 @@ TEST(RubberForces, SumToZeroAndVirialIsSymmetric) {
   EXPECT_NEAR(w(0, 1), w(1, 0), 1e-12 * w.norm());
 }
 
+// ------------------------------------------------------------------------------------------ weight
+// law.three_body_weight = all_bonds (bond_law.hpp): node i's three-body term times W_i = Π_s h(u_is).
+// The forces carry the derivative of W: central differences agree within 1e-6 of max |F|, with bonds in
+// the cut-off, free edges (W = 0 there) and periodic, for both forms of the three-body sum.
+TEST(RubberForces, AllBondsWeightMatchesFiniteDifferences) {
+  frac::Rng rng(17);
+  double worst = 0;
+  for (const auto& [pair, cutoff, angle] : {std::tuple{"marder", "fermi", "marder"},
+                                             std::tuple{"marder", "fermi", "marder-pairwise"},
+                                             std::tuple{"marder-c1", "fermi", "marder"},
+                                             std::tuple{"marder-soft", "smoothstep", "marder"},
+                                             std::tuple{"marder-soft", "smoothstep", "marder-pairwise"}}) {
+    const double width = std::string(cutoff) == "smoothstep" ? 0.2 : 0.05;
+    const BondLaw law = natural_law(1.5, 0.1, 2.75, width, pair, cutoff, angle, "all_bonds");
+    const BondLaw paper = natural_law(1.5, 0.1, 2.75, width, pair, cutoff, angle);
+    for (const bool periodic : {false, true}) {
+      auto model = make_model(law, periodic ? 6 : 7, 8, true, periodic ? 0 : 2.5, periodic);
+      auto reference = make_model(paper, periodic ? 6 : 7, 8, true, periodic ? 0 : 2.5, periodic);
+      const Matrix2d F{{1.2, 0.1}, {0, 3.0}};
+      model->set_box(F);
+      reference->set_box(F);
+      int branch[4];
+      const auto q = random_near(*model, F, 0.12, rng, 2e-4, branch);
+      EXPECT_GT(branch[2], 0);  // bonds in the cut-off: 0 < W < 1 somewhere
+      const double err = fd_error(*model, q);
+      worst = std::max(worst, err);
+      EXPECT_LT(err, 1e-6) << pair << " " << cutoff << " " << angle << (periodic ? " periodic" : " notched");
+      // The weight is active: the three-body energy differs from the paper's.
+      EXPECT_GT(std::abs(model->potential_energy(q).three_body - reference->potential_energy(q).three_body), 1e-3);
+    }
+  }
+  std::cout << "[measured] all_bonds weight, forces vs central differences: worst error / max |F| = " << worst
+            << "\n";
+}
+
+TEST(RubberForces, AllBondsMomentFormEqualsPairLoop) {
+  frac::Rng rng(19);
+  auto a = make_model(natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder", "all_bonds"), 9, 8, false, 3,
+                      false);
+  auto b = make_model(natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder-pairwise", "all_bonds"), 9, 8,
+                      false, 3, false);
+  const auto q = random_near(*a, Matrix2d{{3.0, 0}, {0.2, 1.3}}, 0.1, rng, 0);
+  std::vector<double> fa(q.size()), fb(q.size());
+  a->forces(q, fa);
+  b->forces(q, fb);
+  const double scale = max_abs(fa);
+  for (std::size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(fa[k], fb[k], 1e-12 * scale);
+  const double ea = a->potential_energy(q).three_body, eb = b->potential_energy(q).three_body;
+  EXPECT_NEAR(ea, eb, 1e-12 * std::abs(eb));
+}
+
+// Far field: complete shells, bonds far below u_c: W = 1, exactly with the compact smoothstep cut-off
+// (forces and energy equal the paper's), up to the Fermi tail at u_c = u_0 + 15 widths: W = 1 − O(6e^{-15})
+// in the energy, and T h'/u ~ T e^{-15}/w in the forces (measured 1.3e-6 of the three-body energy and
+// 5e-4 of the largest force of a configuration perturbed by ±0.02Δ; wave speeds: RubberWaves).
+TEST(RubberForces, AllBondsWeightIsOneInTheFarField) {
+  frac::Rng rng(23);
+  const Matrix2d F{{1.2, 0}, {0, 3}};
+  const double u0 = std::hypot(0.5 * 1.2, std::sqrt(3.0) / 2 * 3);
+  struct Law {
+    const char *pair, *cutoff;
+    double uc, w, force_tol, energy_tol;
+  };
+  for (const Law& l : {Law{"marder-soft", "smoothstep", u0 + 0.3, 0.1, 1e-14, 1e-14},
+                       Law{"marder", "fermi", u0 + 0.75, 0.05, 2e-3, 1e-5}}) {
+    auto a = make_model(natural_law(1.5, 0.1, l.uc, l.w, l.pair, l.cutoff, "marder", "all_bonds"), 8, 8, true, 0, true);
+    auto b = make_model(natural_law(1.5, 0.1, l.uc, l.w, l.pair, l.cutoff), 8, 8, true, 0, true);
+    a->set_box(F);
+    b->set_box(F);
+    const auto q = random_near(*a, F, 0.02, rng, 0);
+    std::vector<double> fa(q.size()), fb(q.size());
+    a->forces(q, fa);
+    b->forces(q, fb);
+    double df = 0;
+    for (std::size_t k = 0; k < q.size(); ++k) df = std::max(df, std::abs(fa[k] - fb[k]));
+    const double ea = a->potential_energy(q).three_body, eb = b->potential_energy(q).three_body;
+    std::cout << "[measured] far field (1.2, 3), " << l.cutoff << ": all_bonds vs pair, max |dF| / max |F| = "
+              << df / max_abs(fb) << ", three-body energy " << std::abs(ea - eb) / std::abs(eb) << "\n";
+    EXPECT_LE(df, l.force_tol * max_abs(fb)) << l.cutoff;
+    EXPECT_LE(std::abs(ea - eb), l.energy_tol * std::abs(eb)) << l.cutoff;
+  }
+}
+
+// The free edges of the unstretched sheet: with the paper's weight they feel the incomplete three-body
+// sum (1.08 m a/Δ outwards, b = 1.5); with all_bonds their nodes carry the pair law alone, f'(Δ) = 0, and
+// full shells at F = I exert no three-body force: the whole notched sheet is force-free.
+TEST(RubberForces, AllBondsWeightMakesFreeEdgesForceFree) {
+  auto a = make_model(natural_law(1.5, 0.1, 3.5, 0.05, "marder", "fermi", "marder", "all_bonds"), 12, 10, true, 4,
+                      false);
+  auto b = make_model(natural_law(1.5, 0.1, 3.5, 0.05), 12, 10, true, 4, false);
+  const auto q = deformed(*a, Matrix2d::Identity());
+  std::vector<double> fa(q.size()), fb(q.size());
+  a->forces(q, fa);
+  b->forces(q, fb);
+  std::cout << "[measured] unstretched notched sheet, largest force: pair " << max_abs(fb) << ", all_bonds "
+            << max_abs(fa) << "\n";
+  EXPECT_GT(max_abs(fb), 1.0);
+  EXPECT_LT(max_abs(fa), 1e-12);
+}
+
 // ------------------------------------------------------------------------------------------ threads
 TEST(RubberForces, BitIdenticalForAnyNumberOfThreadsAndBothSchedules) {
   // The three-pass schedule on one thread is the reference; the row-fused schedule on 1, 2, 3 and 5

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/progress.hpp"
@@ -141,6 +143,30 @@ TEST(RubberSetup, InitialStateSeedClampsAndPulse) {
   }
   EXPECT_LT(max_dx, 1e-15);
   EXPECT_NEAR(max_dy, 1e-5, 2e-7);
+}
+
+// loading.ramp_time: the sheet starts at λy = ramp_from_y moving at the homogeneous stretch rate, and the
+// clamped rows keep that rate until ramp_time, then stay at stretch_y.
+TEST(RubberSetup, RampMovesTheClampedRowsToTheStretch) {
+  const auto m = strip(30, 16);
+  const RubberSetup su = setup_for(std::string(kStretch) + "ramp_time = 1e-4\nramp_from_y = 2\n", m);
+  RubberSystem sys = build_rubber(m, su, 1, 1);
+  const std::size_t n = m.nodes();
+  const double rate = (3.0 - 2.0) / 1e-4;
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_NEAR(sys.q0[n + i], 2 * m.position[i].y(), 1e-15);
+    EXPECT_NEAR(sys.v0[n + i], rate * m.position[i].y(), 1e-12);
+  }
+  for (const auto& [t, stretch, moving] : {std::tuple{0.5e-4, 2.5, true}, std::tuple{2e-4, 3.0, false}}) {
+    std::vector<double> q = sys.q0, v = sys.v0, a(2 * n, 0.0);
+    sys.model->prescribe(t, q, v, a);
+    for (std::size_t i : sys.model->clamped_nodes()) {
+      EXPECT_NEAR(q[n + i], stretch * m.position[i].y(), 1e-15);
+      EXPECT_NEAR(v[n + i], moving ? rate * m.position[i].y() : 0.0, 1e-12);
+      EXPECT_NEAR(q[i], 1.2 * m.position[i].x(), 1e-15);
+    }
+  }
+  EXPECT_THROW(setup_for(std::string(kStretch) + "ramp_time = 1e-4\n[boundary]\nclamp_rows = 0\n", m), UsageError);
 }
 
 TEST(RubberSetup, ShortRunConservesEnergyAndKeepsTheTip) {

@@ -137,6 +137,30 @@ TEST(RubberWaves, CutoffCloseToTheBondLengthStiffensTheFarField) {
   EXPECT_GT(near.transverse, 3 * want.transverse);
 }
 
+// The three-body weight all_bonds leaves the far field Mooney-Rivlin: at u_c = u_0 + 15 widths (Fermi,
+// the Fermi tail of W) and with the compact smoothstep cut-off the lattice's long-wave speeds along x
+// and y at (1.2, 3) are those of the paper's weight.
+TEST(RubberWaves, AllBondsWeightKeepsTheFarFieldSpeeds) {
+  const double b = 1.5, w = 0.05;
+  const double u0 = std::hypot(0.5 * 1.2, std::sqrt(3.0) / 2 * 3);
+  for (const char dir : {'x', 'y'}) {
+    const mr::Speeds want = dir == 'x' ? mr::speeds_x(1.2, 3, 1, b) : mr::speeds_y(1.2, 3, 1, b);
+    const LatticeSpeeds paper = lattice_speeds(natural_law(b, 0.1, u0 + 15 * w, w), 1, 1.2, 3, dir);
+    const LatticeSpeeds fermi =
+        lattice_speeds(natural_law(b, 0.1, u0 + 15 * w, w, "marder", "fermi", "marder", "all_bonds"), 1, 1.2, 3, dir);
+    const LatticeSpeeds soft = lattice_speeds(
+        natural_law(b, 0.1, u0 + 0.12, 0.1, "marder-soft", "smoothstep", "marder", "all_bonds"), 1, 1.2, 3, dir);
+    std::cout << "[measured] (1.2, 3) along " << dir << ", all_bonds: fermi u0 + 15w c_T " << fermi.transverse
+              << " c_L " << fermi.longitudinal << " (pair weight " << paper.transverse << ", " << paper.longitudinal
+              << "); smoothstep c_T " << soft.transverse << " c_L " << soft.longitudinal << " (MR " << want.transverse
+              << ", " << want.longitudinal << ")\n";
+    EXPECT_NEAR(fermi.transverse, want.transverse, 0.02 * want.transverse);
+    EXPECT_NEAR(fermi.longitudinal, want.longitudinal, 0.02 * want.longitudinal);
+    EXPECT_NEAR(soft.transverse, want.transverse, 2e-3 * want.transverse);
+    EXPECT_NEAR(soft.longitudinal, want.longitudinal, 2e-3 * want.longitudinal);
+  }
+}
+
 // A bond family shorter than Δ + u_s (λx = 1 with rows along x): not Mooney-Rivlin; the transverse mode
 // along x is unstable (ω² < 0), and the probe says so with NaN.
 TEST(RubberWaves, BranchOneFamilyIsNotMooneyRivlin) {

@@ -1,0 +1,101 @@
+# shellcheck shell=bash disable=SC2154
+# Helpers shared by the bench scripts: source it after setting `out` (a directory for scratch files)
+# and `repeats` (SC2154: both are the caller's). Not a test: the machine is shared and noisy; quote medians, and compare ratios measured
+# within one run of a script.
+
+# Stops unless GNU time is installed (every helper reads its times from it).
+require_gnu_time() {
+  command -v /usr/bin/time >/dev/null || { echo "bench: needs GNU time: apt-get install -y time" >&2; exit 1; }
+}
+
+# time_once COMMAND...: runs COMMAND once (its output discarded) and prints "WALL CPU" in seconds, CPU =
+# user + system. On failure prints the command's standard error and stops the script. Scratch files are
+# per process, so two benchmarks may share $out.
+time_once() {
+  local tf="$out/time.$$.txt" ef="$out/stderr.$$.txt"
+  /usr/bin/time -f "%e %U %S" -o "$tf" "$@" >/dev/null 2>"$ef" ||
+    { echo "bench: failed: $*" >&2; cat "$ef" >&2; rm -f "$tf" "$ef"; exit 1; }
+  awk '{ printf "%s %.2f\n", $1, $2 + $3 }' "$tf"
+  rm -f "$tf" "$ef"
+}
+
+# median_of VALUE...: the median (the middle value; the upper middle for an even count).
+median_of() {
+  printf '%s\n' "$@" | sort -g | sed -n "$(($# / 2 + 1))p"
+}
+
+# median_wall COMMAND...: median wall seconds of COMMAND over $repeats runs.
+median_wall() {
+  local times=() wall cpu r
+  for ((r = 0; r < repeats; r++)); do
+    read -r wall cpu <<<"$(time_once "$@")"
+    times+=("$wall")
+  done
+  median_of "${times[@]}"
+}
+
+# step_ns UNITS STEPS COMMAND...: one measurement of the cost of a step, set-up and output excluded: runs
+# COMMAND --stop.max_steps STEPS and then 2×STEPS, back to back, and prints "CPU WALL", the differences
+# of their CPU and wall times in nanoseconds per unit (cell, node) per step.
+step_ns() {
+  local units=$1 steps=$2 w1 c1 w2 c2
+  shift 2
+  read -r w1 c1 <<<"$(time_once "$@" --stop.max_steps "$steps")"
+  read -r w2 c2 <<<"$(time_once "$@" --stop.max_steps "$((2 * steps))")"
+  awk -v u="$units" -v s="$steps" -v w1="$w1" -v c1="$c1" -v w2="$w2" -v c2="$c2" \
+    'BEGIN { printf "%.0f %.0f\n", (c2 - c1) / (u * s) * 1e9, (w2 - w1) / (u * s) * 1e9 }'
+}
+
+# measure_configs UNITS STEPS NAME...: the cost of a step of each configuration NAME, whose command line
+# (without --stop.max_steps) the caller's function `command_for NAME` prints. A configuration that fails
+# on a 1-step probe is not measured: its first error line goes to failed[NAME]. The others are measured
+# by step_ns, $repeats times, all configurations once per repeat (interleaved, so that a change of load
+# hits them all alike); cpu[NAME] and wall[NAME] get the per-repeat values, space-separated.
+declare -gA failed=() cpu=() wall=()
+measure_configs() {
+  local units=$1 steps=$2 name m c w r
+  shift 2
+  for name in "$@"; do
+    cpu[$name]="" wall[$name]=""
+    # shellcheck disable=SC2046
+    if ! $(command_for "$name") --stop.max_steps 1 >/dev/null 2>"$out/probe.$$.txt"; then
+      failed[$name]=$(grep -m1 . "$out/probe.$$.txt" | sed 's/|/\\|/g')
+    fi
+  done
+  rm -f "$out/probe.$$.txt"
+  for ((r = 0; r < repeats; r++)); do
+    for name in "$@"; do
+      [[ -n ${failed[$name]:-} ]] && continue
+      # shellcheck disable=SC2046
+      m=$(step_ns "$units" "$steps" $(command_for "$name"))
+      read -r c w <<<"$m"
+      cpu[$name]+=" $c" wall[$name]+=" $w"
+    done
+  done
+}
+
+# cost_row TERM WITH WITHOUT [REFERENCE]: a Markdown row: the median CPU ns of configuration WITH minus
+# that of WITHOUT, and its share of REFERENCE's (default WITH).
+cost_row() {
+  local ref=${4:-$2}
+  if [[ -n ${failed[$2]:-} || -n ${failed[$3]:-} ]]; then
+    echo "| $1 | n/a | | $2 − $3 (a configuration failed) |"
+    return
+  fi
+  # shellcheck disable=SC2086
+  awk -v t="$1" -v a="$(median_of ${cpu[$2]})" -v b="$(median_of ${cpu[$3]})" -v all="$(median_of ${cpu[$ref]})" \
+    -v w="$2" -v wo="$3" 'BEGIN { printf "| %s | %.0f | %.0f | %s − %s |\n", t, a - b, 100 * (a - b) / all, w, wo }'
+}
+
+# config_cells NAME: "median | min | max | wall median" of a measured configuration, or "fails: ... | | |".
+config_cells() {
+  if [[ -n ${failed[$1]:-} ]]; then
+    echo "fails: ${failed[$1]} | | |"
+    return
+  fi
+  local sorted
+  # shellcheck disable=SC2086
+  read -ra sorted <<<"$(printf '%s\n' ${cpu[$1]} | sort -g | tr '\n' ' ')"
+  # shellcheck disable=SC2086
+  echo "$(median_of ${cpu[$1]}) | ${sorted[0]} | ${sorted[-1]} | $(median_of ${wall[$1]})"
+}
