@@ -73,43 +73,31 @@ inline double centre_moments(const G& g, const Slots& s, double* D) {
     P4 += q * r2;
   }
   const double c2 = g.c2, c1 = g.c1, c0 = g.c0;
-  if constexpr (Wt::all_bonds) {
-    double others[6];
-    const double W = all_bonds_weight(s, others);
-    const double T =
-        c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
-    if constexpr (Energy) {
-      return W * T;
-    } else {
-      const double c2_4W = 4 * c2 * W, c1_2W = 2 * c1 * W;
-      for (int k = 0; k < 6; ++k) {
-        const double h = s.h[k], ax = s.ax[k], ay = s.ay[k];
-        const double r2 = ax * ax + ay * ay;
-        const double Max = Mxx * ax + Mxy * ay, May = Mxy * ax + Myy * ay;
-        const double aMa = ax * Max + ay * May, Sa = Sx * ax + Sy * ay;
-        const double hr2 = h * r2;
-        const double coef = 2 * (c2 * (aMa - hr2 * r2) + c1 * (Sa - hr2) + c0 * (H1 - h));
-        const double along = (W * coef + T * others[k]) * s.hpu[k] + s.fpu[k];
-        D[2 * k] = h * (c2_4W * (Max - hr2 * ax) + c1_2W * (Sx - h * ax)) + along * ax;
-        D[2 * k + 1] = h * (c2_4W * (May - hr2 * ay) + c1_2W * (Sy - h * ay)) + along * ay;
-      }
-      return 0;
-    }
-  } else if constexpr (Energy) {
-    return c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
+  const double T =
+      c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
+  // The weight and the products of the other slots' cut-offs (only with Wt::all_bonds; the paper's
+  // path computes exactly what it did without the weight).
+  double others[6];
+  double W = 1;
+  if constexpr (Wt::all_bonds) W = all_bonds_weight(s, others);
+  if constexpr (Energy) {
+    return W * T;
   } else {
-    const double c2_4 = 4 * c2, c1_2 = 2 * c1;
+    const double c2_4W = 4 * c2 * W, c1_2W = 2 * c1 * W;
     for (int k = 0; k < 6; ++k) {
       const double h = s.h[k], ax = s.ax[k], ay = s.ay[k];
       const double r2 = ax * ax + ay * ay;
       const double Max = Mxx * ax + Mxy * ay, May = Mxy * ax + Myy * ay;
       const double aMa = ax * Max + ay * May, Sa = Sx * ax + Sy * ay;
       const double hr2 = h * r2;
-      // ∂T/∂a at fixed h, then the chain rule through h(|a|) along a (h' â = (h'/u) a), plus f' â.
+      // ∂T/∂a at fixed h, then the chain rule through h(|a|) along a (h' â = (h'/u) a), plus f' â;
+      // weighted: W ∂T/∂a + T (Π_{t≠s} h_t) h'_s â_s.
       const double coef = 2 * (c2 * (aMa - hr2 * r2) + c1 * (Sa - hr2) + c0 * (H1 - h));
-      const double along = coef * s.hpu[k] + s.fpu[k];
-      D[2 * k] = h * (c2_4 * (Max - hr2 * ax) + c1_2 * (Sx - h * ax)) + along * ax;
-      D[2 * k + 1] = h * (c2_4 * (May - hr2 * ay) + c1_2 * (Sy - h * ay)) + along * ay;
+      double dT = coef;
+      if constexpr (Wt::all_bonds) dT = W * coef + T * others[k];
+      const double along = dT * s.hpu[k] + s.fpu[k];
+      D[2 * k] = h * (c2_4W * (Max - hr2 * ax) + c1_2W * (Sx - h * ax)) + along * ax;
+      D[2 * k + 1] = h * (c2_4W * (May - hr2 * ay) + c1_2W * (Sy - h * ay)) + along * ay;
     }
     return 0;
   }

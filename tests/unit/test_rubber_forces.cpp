@@ -284,19 +284,21 @@ TEST(RubberForces, MatchFiniteDifferencesInAllBranches) {
 }
 
 TEST(RubberForces, MomentFormEqualsPairLoop) {
-  frac::Rng rng(9);
-  const BondLaw fast = natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder");
-  const BondLaw slow = natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder-pairwise");
-  auto a = make_model(fast, 9, 8, false, 3, false);
-  auto b = make_model(slow, 9, 8, false, 3, false);
-  const auto q = random_near(*a, Matrix2d{{3.0, 0}, {0.2, 1.3}}, 0.1, rng, 0);
-  std::vector<double> fa(q.size()), fb(q.size());
-  a->forces(q, fa);
-  b->forces(q, fb);
-  const double scale = max_abs(fa);
-  for (std::size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(fa[k], fb[k], 1e-12 * scale);
-  const double ea = a->potential_energy(q).three_body, eb = b->potential_energy(q).three_body;
-  EXPECT_NEAR(ea, eb, 1e-12 * std::abs(eb));
+  for (const char* weight : {"pair", "all_bonds"}) {
+    frac::Rng rng(9);
+    const BondLaw fast = natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder", weight);
+    const BondLaw slow = natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder-pairwise", weight);
+    auto a = make_model(fast, 9, 8, false, 3, false);
+    auto b = make_model(slow, 9, 8, false, 3, false);
+    const auto q = random_near(*a, Matrix2d{{3.0, 0}, {0.2, 1.3}}, 0.1, rng, 0);
+    std::vector<double> fa(q.size()), fb(q.size());
+    a->forces(q, fa);
+    b->forces(q, fb);
+    const double scale = max_abs(fa);
+    for (std::size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(fa[k], fb[k], 1e-12 * scale) << weight;
+    const double ea = a->potential_energy(q).three_body, eb = b->potential_energy(q).three_body;
+    EXPECT_NEAR(ea, eb, 1e-12 * std::abs(eb)) << weight;
+  }
 }
 
 TEST(RubberForces, SumToZeroAndVirialIsSymmetric) {
@@ -350,22 +352,6 @@ TEST(RubberForces, AllBondsWeightMatchesFiniteDifferences) {
   }
   std::cout << "[measured] all_bonds weight, forces vs central differences: worst error / max |F| = " << worst
             << "\n";
-}
-
-TEST(RubberForces, AllBondsMomentFormEqualsPairLoop) {
-  frac::Rng rng(19);
-  auto a = make_model(natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder", "all_bonds"), 9, 8, false, 3,
-                      false);
-  auto b = make_model(natural_law(1.2, 0.1, 2.8, 0.05, "marder", "fermi", "marder-pairwise", "all_bonds"), 9, 8,
-                      false, 3, false);
-  const auto q = random_near(*a, Matrix2d{{3.0, 0}, {0.2, 1.3}}, 0.1, rng, 0);
-  std::vector<double> fa(q.size()), fb(q.size());
-  a->forces(q, fa);
-  b->forces(q, fb);
-  const double scale = max_abs(fa);
-  for (std::size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(fa[k], fb[k], 1e-12 * scale);
-  const double ea = a->potential_energy(q).three_body, eb = b->potential_energy(q).three_body;
-  EXPECT_NEAR(ea, eb, 1e-12 * std::abs(eb));
 }
 
 // Far field: complete shells, bonds far below u_c: W = 1, exactly with the compact smoothstep cut-off
