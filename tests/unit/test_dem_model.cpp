@@ -572,6 +572,26 @@ TEST(DemModel, ContactsWithZeroModulusEqualContactsOff) {
   EXPECT_NE(compare(mesh, off, on, kSteps).first_difference, -1);
 }
 
+// Breaking on with thresholds no beam reaches (t_ε = t_Θ = 1e300) against breaking off: the same bits,
+// and with breaking off the thresholds do nothing however small (the pass is not run: no beam breaks).
+TEST(DemModel, BreakingWithUnreachableThresholdsEqualsBreakingOff) {
+  const CellMesh mesh = disc_mesh(200, 9);
+  const auto off = load_scene("explosion", {{"stop.t_max", "8e-4"}, {"physics.breaking", "off"}});
+  const auto on = load_scene("explosion", {{"stop.t_max", "8e-4"}, {"material.t_eps", "1e300"},
+                                           {"material.t_theta_deg", "1e300"}});
+  EXPECT_EQ(compare(mesh, off, on, kSteps).first_difference, -1);
+  const auto brittle_off = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"physics.breaking", "off"},
+                                                    {"material.t_eps", "1e-9"}, {"material.t_theta_deg", "1e-9"}});
+  frac::dem::Simulation sim(mesh, brittle_off);
+  frac::Progress progress("test", true);
+  EXPECT_EQ(sim.run(nullptr, progress).broken, 0);
+  EXPECT_EQ(sim.model.beams().intact_count(), sim.model.beams().size());
+  const auto brittle_on = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"material.t_eps", "1e-9"},
+                                                   {"material.t_theta_deg", "1e-9"}});
+  frac::dem::Simulation sim_on(mesh, brittle_on);
+  EXPECT_GT(sim_on.run(nullptr, progress).broken, 100);
+}
+
 // Beams on with E = 0 against beams off (breaking off in both): beam_stiffness gives α = β = δ = 0, so
 // every beam adds ±0 to the force sums (unchanged bits, as above) and nothing to the time-step bound.
 // (Before beam_stiffness special-cased E = 0, δ = β(b/c + 1/3) was 0·∞/∞ = NaN and the run stopped.)
