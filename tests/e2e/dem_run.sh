@@ -3,28 +3,16 @@
 # Small meshes (a few hundred cells of the paper's size g = 1.07 cm) and short runs.
 set -euo pipefail
 bin=$1 scenes=$2 work=$3 case=$4
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+refusal_outputs=(out.h5)
+refusal_inputs=(disc.h5 nodes.h5 nomesh.h5 notes.txt)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 dr=$bin/dem-run
 mg=$bin/mesh-gen
 
-fail() { echo "FAIL: $*" >&2; exit 1; }
-
 # A 300-cell disc (diameter 2·sqrt(300/π)·g) and a 24 × 12 block, both with g = 1.07 cm.
 disc() { "$mg" voronoi --shape disc --diameter 0.209 --cells 300 --seed "${1:-7}" -q -o "${2:-disc.h5}"; }
 block() { "$mg" voronoi --shape rect --size 0.2568x0.1284 --cells 24x12 --seed "${1:-7}" -q -o "${2:-block.h5}"; }
-
-# expect_refusal "what the message must name" command...: exit 2, the message names the fault, no out.h5
-# and no temporary file left behind.
-expect_refusal() {
-  local needle=$1; shift
-  set +e; "$@" >stdout.txt 2>stderr.txt; local rc=$?; set -e
-  cat stderr.txt
-  [[ $rc -eq 2 ]] || fail "exit $rc, expected 2: $*"
-  grep -qF -- "$needle" stderr.txt || fail "message does not name '$needle': $*"
-  [[ ! -e out.h5 ]] || fail "output file left behind: $*"
-  [[ -z $(ls -A . | grep -v -e stdout.txt -e stderr.txt -e disc.h5 -e nodes.h5 -e nomesh.h5 -e notes.txt || true) ]] \
-    || fail "stray files left behind: $(ls -A)"
-}
 
 # The summary line "... K of B beams broken ..." of a run's stderr: prints "K B".
 broken_counts() { sed -n 's/.* \([0-9][0-9]*\) of \([0-9][0-9]*\) beams broken.*/\1 \2/p' "$1" | tail -1; }

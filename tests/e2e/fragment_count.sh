@@ -4,11 +4,12 @@
 #   MAKE_RUN is tests/e2e/fragment_count_make_run (a mesh -> run file with beams broken by rule).
 set -euo pipefail
 bin=$1 make_run=$2 work=$3 case=$4
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+refusal_outputs=(out.h5)
+refusal_inputs=('^in' notes.txt)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 fc=$bin/fragment-count
 mg=$bin/mesh-gen
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # values FILE OBJECT: the values of a dataset or (with -a) an attribute, one a line.
 values() {
@@ -22,19 +23,6 @@ sum() { awk '{ s += $1 } END { printf "%.17g\n", s }'; }
 # close A B [REL]: |A - B| <= REL * max(|A|, |B|)
 close() { awk -v a="$1" -v b="$2" -v r="${3:-1e-12}" 'BEGIN { d = a - b; if (d < 0) d = -d; m = (a < 0 ? -a : a);
   if ((b < 0 ? -b : b) > m) m = (b < 0 ? -b : b); exit !(d <= r * m) }'; }
-
-# expect_refusal "what the message must name" command...: exit 2, the message names the fault, no
-# out.h5, no temporary file left behind.
-expect_refusal() {
-  local needle=$1; shift
-  set +e; "$@" >stdout.txt 2>stderr.txt; local rc=$?; set -e
-  cat stderr.txt
-  [[ $rc -eq 2 ]] || fail "exit $rc, expected 2: $*"
-  grep -qF -- "$needle" stderr.txt || fail "message does not name '$needle': $*"
-  [[ ! -e out.h5 ]] || fail "output file left behind: $*"
-  [[ -z $(ls -A . | grep -v -e stdout.txt -e stderr.txt -e '^in' -e notes.txt || true) ]] \
-    || fail "stray files left behind: $(ls -A)"
-}
 
 case $case in
   help)

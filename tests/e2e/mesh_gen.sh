@@ -2,23 +2,11 @@
 # End-to-end checks of mesh-gen through files and pipes. Usage: mesh_gen.sh BIN_DIR WORK_DIR CASE
 set -euo pipefail
 bin=$1 work=$2 case=$3
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+refusal_outputs=(out.h5)
+refusal_inputs=('^in' nomesh.h5 version2.h5 notes.txt)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 mg=$bin/mesh-gen
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
-
-# expect_refusal "what the message must name" command...: exit 2, message naming the fault, no out.h5,
-# no temporary file left behind.
-expect_refusal() {
-  local needle=$1; shift
-  set +e; "$@" >stdout.txt 2>stderr.txt; local rc=$?; set -e
-  cat stderr.txt
-  [[ $rc -eq 2 ]] || fail "exit $rc, expected 2: $*"
-  grep -qF -- "$needle" stderr.txt || fail "message does not name '$needle': $*"
-  [[ ! -e out.h5 ]] || fail "output file left behind: $*"
-  [[ -z $(ls -A . | grep -v -e stdout.txt -e stderr.txt -e '^in' -e nomesh.h5 -e version2.h5 -e notes.txt || true) ]] \
-    || fail "stray files left behind: $(ls -A)"
-}
 
 case $case in
   help)

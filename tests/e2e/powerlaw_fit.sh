@@ -4,10 +4,11 @@
 #   MAKE_INPUT is tests/e2e/powerlaw_fit_make_input; DOC is docs/powerlaw-fit.md (every text key must be in it).
 set -euo pipefail
 bin=$1 make_input=$2 work=$3 case=$4 doc=$5
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+refusal_outputs=(out.h5 out.txt)
+refusal_inputs=('^in')
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 pf=$bin/powerlaw-fit
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # key NAME FILE: the first value of a "key value" line.
 key() { awk -v k="$1" '$1 == k { print $2; exit }' "$2"; }
@@ -23,18 +24,6 @@ check() {
   local args=()
   for kv in "$@"; do args+=(-v "$kv"); done
   awk "${args[@]}" "BEGIN { exit !($cond) }" || fail "$what ($*)"
-}
-
-# expect_refusal "what the message must name" command...: exit 2, the message names the fault, no output
-# file and no temporary file left behind.
-expect_refusal() {
-  local needle=$1; shift
-  set +e; "$@" >stdout.txt 2>stderr.txt; local rc=$?; set -e
-  cat stderr.txt
-  [[ $rc -eq 2 ]] || fail "exit $rc, expected 2: $*"
-  grep -qF -- "$needle" stderr.txt || fail "message does not name '$needle': $*"
-  [[ ! -e out.h5 && ! -e out.txt ]] || fail "output file left behind: $*"
-  [[ -z $(ls -A . | grep -v -e stdout.txt -e stderr.txt -e '^in' || true) ]] || fail "stray files left behind: $(ls -A)"
 }
 
 case $case in

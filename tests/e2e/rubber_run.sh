@@ -3,6 +3,9 @@
 # Small strips (60 x 20 nodes, Δ = 1 mm) and short runs (a few time units Δ/√a = 25 µs).
 set -euo pipefail
 bin=$1 scenes=$2 work=$3 case=$4
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+refusal_outputs=(out.h5)
+refusal_inputs=(strip.h5 cells.h5 nomesh.h5 notes.txt)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 rr=$bin/rubber-run
 mg=$bin/mesh-gen
@@ -10,22 +13,7 @@ stretch=$scenes/stretch.ini
 wave=$scenes/wave.ini
 short=(--stop.t_max 1e-4 --output.frame_interval 5e-5)
 
-fail() { echo "FAIL: $*" >&2; exit 1; }
-
 strip() { "$mg" triangular --nodes 60x20 --spacing 1e-3 -q -o "${1:-strip.h5}"; }
-
-# expect_refusal "what the message must name" command...: exit 2, the message names the fault, no out.h5
-# and no temporary file left behind.
-expect_refusal() {
-  local needle=$1; shift
-  set +e; "$@" >stdout.txt 2>stderr.txt; local rc=$?; set -e
-  cat stderr.txt
-  [[ $rc -eq 2 ]] || fail "exit $rc, expected 2: $*"
-  grep -qF -- "$needle" stderr.txt || fail "message does not name '$needle': $*"
-  [[ ! -e out.h5 ]] || fail "output file left behind: $*"
-  [[ -z $(ls -A . | grep -v -e stdout.txt -e stderr.txt -e strip.h5 -e cells.h5 -e nomesh.h5 -e notes.txt || true) ]] \
-    || fail "stray files left behind: $(ls -A)"
-}
 
 # A root attribute of a file, as h5dump prints its value.
 root_attr() { h5dump -a "/$2" "$1" | sed -n 's/.*(0): *//p' | tr -d '"'; }

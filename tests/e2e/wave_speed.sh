@@ -12,28 +12,17 @@ bin=$1 work=$2 case=$3
 shift 3
 here=$(cd "$(dirname "$0")" && pwd)
 scenes=$here/../../data/scenes
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+refusal_outputs=(out.h5 out.txt)
+refusal_inputs=(mesh.h5 notes.txt)
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 ws=$bin/wave-speed
 
-fail() { echo "FAIL: $*" >&2; exit 1; }
 need() { [[ -x $bin/$1 ]] || { echo "SKIP: $1 is not built in $bin"; exit 77; }; }
 # value KEY FILE: the value of a "key value" line.
 value() { awk -v k="$1" '$1 == k { print $2; found = 1 } END { if (!found) exit 1 }' "$2"; }
 # close A B TOL: |A - B| <= TOL (relative to B when REL=1).
 close() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
-
-# expect_refusal "what the message must name" command...: exit 2, the message names the fault, no out.h5
-# and no temporary file left behind.
-expect_refusal() {
-  local needle=$1; shift
-  set +e; "$@" >stdout.txt 2>stderr.txt; local rc=$?; set -e
-  cat stderr.txt
-  [[ $rc -eq 2 ]] || fail "exit $rc, expected 2: $*"
-  grep -qF -- "$needle" stderr.txt || fail "message does not name '$needle': $*"
-  [[ ! -e out.h5 && ! -e out.txt ]] || fail "output file left behind: $*"
-  [[ -z $(ls -A . | grep -v -e stdout.txt -e stderr.txt -e mesh.h5 -e notes.txt || true) ]] \
-    || fail "stray files left behind: $(ls -A)"
-}
 
 case $case in
   help)

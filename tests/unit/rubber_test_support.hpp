@@ -1,8 +1,13 @@
 #pragma once
 // Shared by the rubber unit tests: the bond law in natural units (Δ = m = a = 1, b given), with the
 // short-bond width us, the cut-off uc and its width w; evaluators and the three-body weight chosen by name
-// (defaults: the paper's).
+// (defaults: the paper's); and the positions of a model's lattice under a homogeneous deformation F.
+#include <vector>
+
+#include <Eigen/Core>
+
 #include "rubber/bond_law.hpp"
+#include "rubber/model.hpp"
 #include "rubber/mooney_rivlin.hpp"
 
 namespace frac::rubber::test {
@@ -18,6 +23,18 @@ inline BondLaw natural_law(double b, double us, double uc, double w, const char*
   p.cutoff = uc;
   p.cutoff_width = w;
   return make_bond_law(p, pair, cutoff, angle, weight);
+}
+
+// q = F·r for every node (layout [x.., y..]).
+inline std::vector<double> deformed(const Model& model, const Eigen::Matrix2d& F) {
+  const Lattice& L = model.lattice();
+  std::vector<double> q(2 * L.n);
+  for (std::size_t i = 0; i < L.n; ++i) {
+    const Eigen::Vector2d x = F * Eigen::Vector2d(L.rx[i], L.ry[i]);
+    q[i] = x.x();
+    q[L.n + i] = x.y();
+  }
+  return q;
 }
 
 }  // namespace frac::rubber::test

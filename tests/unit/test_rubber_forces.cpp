@@ -26,6 +26,7 @@ using namespace frac::rubber;
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
+using test::deformed;
 using test::natural_law;
 
 std::unique_ptr<Model> make_model(const BondLaw& law, std::int64_t nx, std::int64_t ny, bool rows_x, double notch,
@@ -44,17 +45,6 @@ std::unique_ptr<Model> make_model(const BondLaw& law, std::int64_t nx, std::int6
   mo.damping = damping;
   mo.beta = beta;
   return std::make_unique<Model>(build_lattice(frac::mesh::make_triangular_lattice(o), periodic, periodic), mo);
-}
-
-std::vector<double> deformed(const Model& model, const Matrix2d& F) {
-  const Lattice& L = model.lattice();
-  std::vector<double> q(2 * L.n);
-  for (std::size_t i = 0; i < L.n; ++i) {
-    const Vector2d x = F * Vector2d(L.rx[i], L.ry[i]);
-    q[i] = x.x();
-    q[L.n + i] = x.y();
-  }
-  return q;
 }
 
 double shortest_family(const Matrix2d& F) {
