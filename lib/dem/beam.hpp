@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/angle.hpp"
+
 namespace frac::dem {
 
 struct BeamStiffness {
@@ -43,33 +45,61 @@ struct BeamResponse {
   double energy;      // elastic energy, J
 };
 
-inline BeamResponse beam_response(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j,
-                                  double l0, const BeamStiffness& k) {
-  BeamResponse r;
+// The current beam axis: length l, unit vector e, and the rotation since the reference state e0 as
+// sin Δψ = e0 × e and cos Δψ = e0 · e.
+struct BeamAxis {
+  double length, inv_length, ex, ey, sin_psi, cos_psi;
+};
+inline BeamAxis beam_axis(double dx, double dy, double e0x, double e0y) {
   const double l = std::sqrt(dx * dx + dy * dy);
   const double inv_l = 1.0 / l;
   const double ex = dx * inv_l, ey = dy * inv_l;
-  // Rotation of the axis since the reference state, as a wrapped difference (never raw atan2 values).
-  const double dpsi = std::atan2(e0x * ey - e0y * ex, e0x * ex + e0y * ey);
-  const double ti = wrap_angle(phi_i - dpsi);
-  const double tj = wrap_angle(phi_j - dpsi);
+  return {l, inv_l, ex, ey, e0x * ey - e0y * ex, e0x * ex + e0y * ey};
+}
+
+// The response of a beam on `axis` whose ends are rotated by Θ_i, Θ_j from it.
+inline BeamResponse beam_response_at(const BeamAxis& axis, double ti, double tj, double l0, const BeamStiffness& k) {
+  BeamResponse r;
   const double l02 = l0 * l0;
   const double mi = -(k.beta * l02 / 2) * tj + k.delta * l02 * (tj - ti);
   const double mj = -(k.beta * l02 / 2) * ti + k.delta * l02 * (ti - tj);
-  const double q = (mi + mj) * inv_l;  // shear force along t = ẑ × e, from the moment balance
-  const double stretch = l - l0;
+  const double q = (mi + mj) * axis.inv_length;  // shear force along t = ẑ × e, from the moment balance
+  const double stretch = axis.length - l0;
   const double fa = k.alpha * stretch;
-  r.length = l;
+  r.length = axis.length;
   r.strain = stretch / l0;
   r.theta_i = ti;
   r.theta_j = tj;
-  r.fx = fa * ex - q * ey;
-  r.fy = fa * ey + q * ex;
+  r.fx = fa * axis.ex - q * axis.ey;
+  r.fy = fa * axis.ey + q * axis.ex;
   r.torque_i = mi;
   r.torque_j = mj;
   r.energy = 0.5 * k.alpha * stretch * stretch +
              l02 * (0.5 * k.delta * (ti * ti + tj * tj) + (0.5 * k.beta - k.delta) * ti * tj);
   return r;
+}
+
+inline BeamResponse beam_response(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j,
+                                  double l0, const BeamStiffness& k) {
+  const BeamAxis axis = beam_axis(dx, dy, e0x, e0y);
+  // Rotation of the axis since the reference state, as a wrapped difference (never raw atan2 values);
+  // it is small for an intact beam, where atan2_near_zero is fast.
+  const double dpsi = geometry::atan2_near_zero(axis.sin_psi, axis.cos_psi);
+  return beam_response_at(axis, wrap_angle(phi_i - dpsi), wrap_angle(phi_j - dpsi), l0, k);
+}
+
+// beam_response where it needs neither the library's atan2 nor a wrap (Δψ within ±π/8, Θ within
+// (−π, π]): branch-free, so a loop over beams vectorises. Returns false, r unspecified, elsewhere;
+// where it returns true, r is beam_response's, bit for bit.
+inline bool beam_response_near_reference(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j,
+                                         double l0, const BeamStiffness& k, BeamResponse& r) {
+  const BeamAxis axis = beam_axis(dx, dy, e0x, e0y);
+  const double dpsi = geometry::atan_near_zero(axis.sin_psi / axis.cos_psi);
+  const double ti = phi_i - dpsi, tj = phi_j - dpsi;
+  r = beam_response_at(axis, ti, tj, l0, k);
+  constexpr double pi = std::numbers::pi;
+  return geometry::atan2_in_near_zero_range(axis.sin_psi, axis.cos_psi) & (ti > -pi) & (ti <= pi) & (tj > -pi) &
+         (tj <= pi);
 }
 
 // Breaking rule, paper eq. 13: only a stretched beam breaks, when (ε/t_ε)² + max(|Θ_i|,|Θ_j|)/t_Θ ≥ 1.
@@ -80,6 +110,28 @@ inline int breaking_mode(double strain, double theta_i, double theta_j, double t
   const double b = std::max(std::abs(theta_i), std::abs(theta_j)) / t_theta;
   if (s + b < 1) return 0;
   return s >= b ? 1 : 2;
+}
+
+// breaking_mode of the beam in state (dx, dy, φ_i, φ_j), without the atan2 where the answer is certain:
+// a beam that is not stretched holds, and one whose end rotations are bounded well inside the rule
+// holds. The bound: |Θ| = |wrap(φ − Δψ)| ≤ |φ| + |Δψ| and |Δψ| ≤ |tan Δψ| = |sin Δψ|/cos Δψ while the
+// axis has turned by less than π/2; the 1e-9 margin dwarfs the round-off of the exact evaluation. Every
+// other beam gets the exact rule on beam_response's values, so the verdict (and the mode) is the same.
+// `energy` receives the elastic energy of a beam that breaks.
+inline int breaking_mode(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
+                         const BeamStiffness& k, double t_eps, double t_theta, double& energy) {
+  const double l = std::sqrt(dx * dx + dy * dy);
+  const double strain = (l - l0) / l0;
+  if (!(strain > 0)) return 0;
+  const double ex = dx / l, ey = dy / l;
+  const double sin_psi = e0x * ey - e0y * ex, cos_psi = e0x * ex + e0y * ey;
+  if (cos_psi > 0.5) {
+    const double theta_bound = std::max(std::abs(phi_i), std::abs(phi_j)) + std::abs(sin_psi) / cos_psi;
+    if ((strain / t_eps) * (strain / t_eps) + theta_bound / t_theta < 1 - 1e-9) return 0;
+  }
+  const BeamResponse r = beam_response(dx, dy, e0x, e0y, phi_i, phi_j, l0, k);
+  energy = r.energy;
+  return breaking_mode(r.strain, r.theta_i, r.theta_j, t_eps, t_theta);
 }
 
 }  // namespace frac::dem

@@ -53,7 +53,16 @@ class Beams {
   std::vector<BeamStiffness> k_;
   std::vector<std::uint8_t> intact_;
   std::vector<std::int32_t> active_;
-  mutable std::vector<BeamResponse> response_;  // per active beam, filled in parallel, summed in order
+  struct BeamForce {
+    double fx, fy, torque_i, torque_j;
+  };
+  mutable std::vector<BeamForce> force_;  // per active beam, filled in parallel, summed in order
+  mutable std::vector<std::uint8_t> far_;  // per active beam: rotated beyond the vectorised formula
+  struct Verdict {
+    int mode;       // breaking_mode's
+    double energy;  // elastic energy, J, when it breaks
+  };
+  std::vector<Verdict> verdict_;  // per active beam, the breaking pass (filled in parallel)
 };
 
 }  // namespace frac::dem

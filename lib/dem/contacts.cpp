@@ -46,7 +46,7 @@ void ContactSearch::world_vertices(std::span<const double> q) {
   const double* x = q.data();
   const double* y = x + n;
   const double* phi = y + n;
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n > kMinParallelItems)
   for (std::size_t k = 0; k < n; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
     const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
@@ -154,7 +154,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   // per pair), then the current facing edges, which become the cached ones when they separate.
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const auto count = static_cast<std::ptrdiff_t>(candidates_.size());
-#pragma omp parallel for schedule(static) if (count > 1024)
+#pragma omp parallel for schedule(static) if (count > static_cast<std::ptrdiff_t>(kMinParallelItems))
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     auto& pair = neighbours_[static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)])];
     const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
@@ -197,29 +197,6 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
 }
 
 namespace {
-// Applies force (fx, fy) on i at R and its opposite on j; returns the power delivered, F·(v_i(R) − v_j(R)).
-inline double apply_pair(std::size_t n, std::span<const double> q, std::span<const double> v, std::span<double> f,
-                         std::size_t i, std::size_t j, double rx, double ry, double fx, double fy) {
-  const double* x = q.data();
-  const double* y = x + n;
-  double* fxa = f.data();
-  double* fya = fxa + n;
-  double* tz = fya + n;
-  const double rix = rx - x[i], riy = ry - y[i], rjx = rx - x[j], rjy = ry - y[j];
-  fxa[i] += fx;
-  fya[i] += fy;
-  fxa[j] -= fx;
-  fya[j] -= fy;
-  tz[i] += rix * fy - riy * fx;
-  tz[j] -= rjx * fy - rjy * fx;
-  const double* vx = v.data();
-  const double* vy = vx + n;
-  const double* w = vy + n;
-  const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
-  const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
-  return fx * (vix - vjx) + fy * (viy - vjy);
-}
-
 // Relative velocity of j with respect to i at R, v_rel = v_j + ω_j ẑ×(R−c_j) − v_i − ω_i ẑ×(R−c_i).
 inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::span<const double> v, std::size_t i,
                               std::size_t j, double rx, double ry) {
@@ -232,49 +209,87 @@ inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::spa
   const double vjx = vx[j] - w[j] * (ry - y[j]), vjy = vy[j] + w[j] * (rx - x[j]);
   return {vjx - vix, vjy - viy};
 }
+
+// One contact force term: force_of(k) gives the force on i of contact k (j receives its opposite), applied
+// at R_k. The pair forces, their torques and powers are computed in parallel, each in its own slot, then
+// added to the bodies in contact order (one thread): the same bits whatever the thread count. Returns the
+// power delivered to the bodies, F·(v_i(R) − v_j(R)) summed over the contacts.
+template <class ForceOf>
+double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q, std::span<const double> v,
+                       std::span<double> f, ForceOf&& force_of) {
+  const std::size_t count = c.size();
+  if (c.pair_force.size() < count) c.pair_force.resize(count + count / 4);
+  const double* x = q.data();
+  const double* y = x + n;
+  const double* vx = v.data();
+  const double* vy = vx + n;
+  const double* w = vy + n;
+#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec2 force = force_of(k);
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    const double fx = force.x(), fy = force.y();
+    const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
+    const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
+    const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
+    c.pair_force[k] = {fx, fy, rix * fy - riy * fx, rjx * fy - rjy * fx, fx * (vix - vjx) + fy * (viy - vjy)};
+  }
+  double* fxa = f.data();
+  double* fya = fxa + n;
+  double* tz = fya + n;
+  double power = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const PairForce& p = c.pair_force[k];
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    fxa[i] += p.fx;
+    fya[i] += p.fy;
+    fxa[j] -= p.fx;
+    fya[j] -= p.fy;
+    tz[i] += p.torque_i;
+    tz[j] -= p.torque_j;
+    power += p.power;
+  }
+  return power;
+}
+
+double effective_mass(const Bodies& bodies, std::size_t i, std::size_t j) {
+  return bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
+}
 }  // namespace
 
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v, std::span<double> f) {
   const double yh = p.grain_modulus * p.thickness;
-  double power = 0;
-  for (std::size_t k = 0; k < c.size(); ++k) {
+  return add_pair_forces(c, bodies.n, q, v, f, [&](std::size_t k) {
     const double fn = -yh * c.area[k] * c.inv_lc[k];
     c.fn[k] = fn;
-    power += apply_pair(bodies.n, q, v, f, static_cast<std::size_t>(c.i[k]), static_cast<std::size_t>(c.j[k]), c.rx[k],
-                        c.ry[k], fn * c.nx[k], fn * c.ny[k]);
-  }
-  return power;
+    return Vec2(fn * c.nx[k], fn * c.ny[k]);
+  });
 }
 
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v, std::span<double> f) {
-  double power = 0;
-  for (std::size_t k = 0; k < c.size(); ++k) {
+  return add_pair_forces(c, bodies.n, q, v, f, [&](std::size_t k) {
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
     const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
-    const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
-    const double fd = m_eff * p.gamma_n * vn;
+    const double fd = effective_mass(bodies, i, j) * p.gamma_n * vn;
     c.fn[k] += fd;
-    power += apply_pair(bodies.n, q, v, f, i, j, c.rx[k], c.ry[k], fd * c.nx[k], fd * c.ny[k]);
-  }
-  return power;
+    return Vec2(fd * c.nx[k], fd * c.ny[k]);
+  });
 }
 
-double contact_friction(const ContactList& c, const ContactParameters& p, const Bodies& bodies,
-                        std::span<const double> q, std::span<const double> v, std::span<double> f) {
-  double power = 0;
-  for (std::size_t k = 0; k < c.size(); ++k) {
+double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
+                        std::span<const double> v, std::span<double> f) {
+  return add_pair_forces(c, bodies.n, q, v, f, [&](std::size_t k) {
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
     const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
     const double vt = vr.x() * tx + vr.y() * ty;
-    const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
-    const double ft = std::copysign(std::min(m_eff * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
-    power += apply_pair(bodies.n, q, v, f, i, j, c.rx[k], c.ry[k], ft * tx, ft * ty);
-  }
-  return power;
+    const double ft =
+        std::copysign(std::min(effective_mass(bodies, i, j) * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
+    return Vec2(ft * tx, ft * ty);
+  });
 }
 
 }  // namespace frac::dem

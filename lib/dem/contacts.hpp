@@ -8,13 +8,15 @@
 //   contact_friction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
 // Every pair force is equal and opposite and acts at one point, so momentum and angular momentum are
 // conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger.
-// Threads (OpenMP) share only the overlap geometry of the candidate pairs, each written to its own
-// slot; the list is then filled in pair order, so results do not depend on the thread count.
+// Threads (OpenMP) share the overlap geometry of the candidate pairs and the pair forces, each written to
+// its own slot; the list is then filled, and the forces summed, in pair order, so results do not depend
+// on the thread count.
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "dem/bodies.hpp"
 #include "geometry/overlap.hpp"
 #include "geometry/vec2.hpp"
@@ -23,6 +25,12 @@ namespace frac::dem {
 
 using geometry::Vec2;
 
+// One contact's force on i (j receives −F), its torques about c_i and c_j (τ_i = r_i × F, τ_j = −r_j × F is
+// added as −torque_j) and the power it delivers: scratch of the force terms.
+struct PairForce {
+  double fx, fy, torque_i, torque_j, power;
+};
+
 struct ContactList {
   std::vector<std::int32_t> i, j;
   std::vector<double> rx, ry;   // application point R, m
@@ -30,6 +38,7 @@ struct ContactList {
   std::vector<double> area;     // overlap area, m^2
   std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
   std::vector<double> fn;       // normal force on i along n (elastic + damping), N; negative = repulsive
+  std::vector<PairForce> pair_force;  // scratch of the force terms (one slot per contact, filled in parallel)
   std::size_t size() const { return i.size(); }
   void clear();
   // Diagnostics of the last search.
@@ -87,7 +96,7 @@ double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies&
                        std::span<const double> v, std::span<double> f);
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v, std::span<double> f);
-double contact_friction(const ContactList& c, const ContactParameters& p, const Bodies& bodies,
+double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies,
                         std::span<const double> q, std::span<const double> v, std::span<double> f);
 
 }  // namespace frac::dem

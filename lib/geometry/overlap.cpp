@@ -68,23 +68,36 @@ bool clip_step(const LabelledPolygon& in, const Vec2& a, const Vec2& b, int line
   return true;
 }
 
+// The edges of a polygon as the shared-edge test needs them: d_c = p_{c+1} − p_c and tol²·|d_c|².
+struct EdgeTable {
+  std::array<Vec2, kMaxContactPolygonVertices> d;
+  std::array<double, kMaxContactPolygonVertices> limit;
+  std::span<const Vec2> p;
+  EdgeTable(std::span<const Vec2> polygon, double tol2) : p(polygon) {
+    const std::size_t m = p.size();
+    for (std::size_t c = 0; c < m; ++c) {
+      d[c] = p[c + 1 == m ? 0 : c + 1] - p[c];
+      limit[c] = tol2 * d[c].squaredNorm();
+    }
+  }
+};
+
 // Edge u -> v of the overlap lies on the boundary of `other` too (u, v within tol of one of its
 // edge lines, same orientation), or is shorter than tol: it then belongs to neither boundary.
 // Distances compare squared: |d × (p − a)| ≤ tol·|d|  ⇔  (d × (p − a))² ≤ tol²·|d|².
-bool shared_edge(const Vec2& u, const Vec2& v, std::span<const Vec2> other, double tol) {
+bool shared_edge(const Vec2& u, const Vec2& v, const EdgeTable& other, double tol2) {
   const Vec2 e = v - u;
-  const double tol2 = tol * tol;
   if (e.squaredNorm() <= tol2) return true;
-  const std::size_t m = other.size();
+  // Branch-free over the edges: which edges pass is unpredictable, and there are few.
+  const std::size_t m = other.p.size();
+  bool shared = false;
   for (std::size_t c = 0; c < m; ++c) {
-    const Vec2& a = other[c];
-    const Vec2 d = other[c + 1 == m ? 0 : c + 1] - a;
-    if (e.dot(d) <= 0.0) continue;
-    const double limit = tol2 * d.squaredNorm();
+    const Vec2& d = other.d[c];
+    const Vec2& a = other.p[c];
     const double su = cross(d, u - a), sv = cross(d, v - a);
-    if (su * su <= limit && sv * sv <= limit) return true;
+    shared |= (e.dot(d) > 0.0) & (su * su <= other.limit[c]) & (sv * sv <= other.limit[c]);
   }
-  return false;
+  return shared;
 }
 
 // n perpendicular to the contact line (p2 - p1 != 0), oriented from i toward j.
@@ -159,11 +172,13 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   // Shared status of each edge, evaluated on demand: -1 unknown, 0 no, 1 yes.
   std::array<signed char, kMaxOverlapVertices> shared_state;
   shared_state.fill(-1);
+  const double tol2 = eps_len * eps_len;
+  const EdgeTable edges_i(si, tol2), edges_j(sj, tol2);
   auto shared = [&](std::size_t e) {
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
       const Vec2& v = P.v[e + 1 == K ? 0 : e + 1];
-      shared_state[e] = shared_edge(u, v, owner_j(e) ? si : sj, eps_len) ? 1 : 0;
+      shared_state[e] = shared_edge(u, v, owner_j(e) ? edges_i : edges_j, tol2) ? 1 : 0;
     }
     return shared_state[e] == 1;
   };
@@ -271,11 +286,14 @@ bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const V
   if (edge >= n) return false;
   const Vec2& a = p[edge];
   const Vec2 e = p[edge + 1 == n ? 0 : edge + 1] - a;
-  const double len = e.norm();
-  if (!(len > 0)) return false;
-  const double limit = -slack * len;
-  for (const Vec2& v : q)
-    if (e.y() * (v.x() - a.x()) - e.x() * (v.y() - a.y()) < limit) return false;
+  const double e2 = e.squaredNorm();
+  if (!(e2 > 0)) return false;
+  // A vertex v penetrates by more than slack when (e × (v − a))/|e| < −slack: compared squared, no sqrt.
+  const double limit2 = slack * slack * e2;
+  for (const Vec2& v : q) {
+    const double s = e.y() * (v.x() - a.x()) - e.x() * (v.y() - a.y());
+    if (s < 0 && s * s > limit2) return false;
+  }
   return true;
 }
 

@@ -357,3 +357,97 @@ TEST(DemBeam, BreakingRule) {
 }
 
 }  // namespace
+
+namespace {
+
+// The fast paths of the beam loops (lib/geometry/angle.hpp, beam_response_near_reference, the breaking
+// pre-check) against the exact forms. atan2_near_zero: a rational approximation good to ~1e-16 relative
+// plus one rounded division: 4 ulp allows twice the worst case measured (2 ulp over 10^7 draws).
+TEST(DemBeam, Atan2NearZeroAgreesWithLibrary) {
+  using frac::geometry::atan2_near_zero;
+  frac::Rng rng(5);
+  double worst_ulp = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const double scale = std::pow(10.0, -12 * rng.uniform());
+    const double x = 0.5 + rng.uniform(), y = (rng.uniform() - 0.5) * 0.83 * x * scale;
+    const double exact = std::atan2(y, x), fast = atan2_near_zero(y, x);
+    const double ulp = std::nextafter(std::abs(exact), 1e300) - std::abs(exact);
+    worst_ulp = std::max(worst_ulp, std::abs(fast - exact) / ulp);
+  }
+  EXPECT_LE(worst_ulp, 4.0);
+  // Outside |y| ≤ tan(π/8)·x, x > 0 it is the library's atan2, bit for bit.
+  for (double y : {0.5, -0.5, 1.0, 1e300, -0.0, 0.0})
+    for (double x : {1.0, -1.0, 0.0, -0.0, 1e-300})
+      if (!(x > 0 && std::abs(y) <= 0.41421356237309503 * x)) {
+        EXPECT_EQ(atan2_near_zero(y, x), std::atan2(y, x)) << y << " " << x;
+      }
+  EXPECT_EQ(atan2_near_zero(0.0, 1.0), 0.0);
+  std::printf("[ beam     ] atan2_near_zero vs std::atan2: worst %.1f ulp\n", worst_ulp);
+}
+
+// Where the branch-free formula says it applies, it is beam_response bit for bit; it declines rotations
+// beyond π/8 and end angles outside (−π, π] (which need the wrap).
+TEST(DemBeam, NearReferenceFormulaEqualsExactResponse) {
+  const BeamStiffness k = beam_stiffness(kL0, 0.01, kH, kE, kShearRatio);
+  frac::Rng rng(8);
+  int covered = 0, declined = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const double psi0 = (rng.uniform() - 0.5) * 2 * kPi;
+    const double turn = (rng.uniform() - 0.5) * 1.2;  // up to ±34°: some beyond π/8
+    const double l = kL0 * (0.8 + 0.4 * rng.uniform());
+    const double phi_i = (rng.uniform() - 0.5) * 8, phi_j = (rng.uniform() - 0.5) * 8;  // some beyond ±π
+    const double e0x = std::cos(psi0), e0y = std::sin(psi0);
+    const double dx = l * std::cos(psi0 + turn), dy = l * std::sin(psi0 + turn);
+    BeamResponse fast;
+    const bool near = frac::dem::beam_response_near_reference(dx, dy, e0x, e0y, phi_i, phi_j, kL0, k, fast);
+    const BeamResponse exact = beam_response(dx, dy, e0x, e0y, phi_i, phi_j, kL0, k);
+    // Clearly inside its range (π/8 = 0.3927, π = 3.1416): it must apply.
+    const bool expected = std::abs(turn) < 0.39 && std::abs(phi_i - turn) < 3.1 && std::abs(phi_j - turn) < 3.1;
+    if (near) {
+      ++covered;
+      EXPECT_EQ(fast.fx, exact.fx);
+      EXPECT_EQ(fast.fy, exact.fy);
+      EXPECT_EQ(fast.torque_i, exact.torque_i);
+      EXPECT_EQ(fast.torque_j, exact.torque_j);
+      EXPECT_EQ(fast.energy, exact.energy);
+    } else {
+      ++declined;
+      EXPECT_FALSE(expected) << "turn " << turn << " phi " << phi_i << " " << phi_j;
+    }
+  }
+  EXPECT_GT(covered, 1000);
+  EXPECT_GT(declined, 1000);
+}
+
+// The breaking pass's pre-check (no atan2 where the verdict is certain) gives the exact rule's verdict
+// and energy, including states within 1e-6 of the threshold.
+TEST(DemBeam, BreakingPrecheckGivesExactVerdict) {
+  const BeamStiffness k = beam_stiffness(kL0, 0.01, kH, kE, kShearRatio);
+  const double te = 0.03, tt = 4 * kPi / 180;
+  frac::Rng rng(13);
+  int breaks = 0, near_threshold = 0;
+  for (int n = 0; n < 50000; ++n) {
+    const double psi0 = (rng.uniform() - 0.5) * 2 * kPi;
+    const double turn = (rng.uniform() - 0.5) * (n % 5 == 0 ? 7.0 : 0.2);
+    const double strain = (rng.uniform() - 0.3) * 0.05;
+    const double phi_i = (rng.uniform() - 0.5) * 0.2, phi_j = (rng.uniform() - 0.5) * 0.2;
+    const double l = kL0 * (1 + strain);
+    const double e0x = std::cos(psi0), e0y = std::sin(psi0);
+    const double dx = l * std::cos(psi0 + turn), dy = l * std::sin(psi0 + turn);
+    const BeamResponse r = beam_response(dx, dy, e0x, e0y, phi_i, phi_j, kL0, k);
+    const int exact = breaking_mode(r.strain, r.theta_i, r.theta_j, te, tt);
+    double energy = -1;
+    const int fast = breaking_mode(dx, dy, e0x, e0y, phi_i, phi_j, kL0, k, te, tt, energy);
+    ASSERT_EQ(fast, exact) << "strain " << r.strain << " turn " << turn;
+    if (exact != 0) {
+      ++breaks;
+      EXPECT_EQ(energy, r.energy);
+    }
+    const double rule = (r.strain / te) * (r.strain / te) + std::max(std::abs(r.theta_i), std::abs(r.theta_j)) / tt;
+    if (r.strain > 0 && std::abs(rule - 1) < 1e-2) ++near_threshold;
+  }
+  EXPECT_GT(breaks, 1000);
+  EXPECT_GT(near_threshold, 100);
+}
+
+}  // namespace

@@ -1,0 +1,11 @@
+#pragma once
+// Threading policy of the force loops (OpenMP): a loop runs in parallel only above this many items,
+// below it the fork and join cost more than the work. Each item writes its own slot; sums over items
+// are done afterwards in item order, so results do not depend on the thread count.
+#include <cstddef>
+
+namespace frac {
+
+inline constexpr std::size_t kMinParallelItems = 256;
+
+}  // namespace frac
