@@ -32,7 +32,7 @@ for side in 100 316; do
   for model in beams full; do
     if [[ $model == beams ]]; then extra=("${beams_only[@]}"); else extra=("${full_model[@]}"); fi
     for t in $threads; do
-      cmd=(env OMP_NUM_THREADS=$t "$bin/dem-run" --scene "$scenes/pulse.ini" "$out/dem-mesh.h5" -q -o "$out/dem-run.h5"
+      cmd=("$bin/dem-run" --threads "$t" --scene "$scenes/pulse.ini" "$out/dem-mesh.h5" -q -o "$out/dem-run.h5"
            "${quiet_output[@]}" "${extra[@]}" --loading.energy 1)
       a=$(median_wall "${cmd[@]}" --stop.max_steps "$steps")
       b=$(median_wall "${cmd[@]}" --stop.max_steps "$((2 * steps))")
@@ -50,7 +50,7 @@ echo "|---|---|---|---|"
 for t in $threads; do
   for run in "explosion disc" "impact block"; do
     set -- $run
-    w=$(median_wall env OMP_NUM_THREADS=$t "$bin/dem-run" --scene "$scenes/$1.ini" "$out/$2.h5" -q -o "$out/$1.h5")
+    w=$(median_wall "$bin/dem-run" --threads "$t" --scene "$scenes/$1.ini" "$out/$2.h5" -q -o "$out/$1.h5")
     steps=$(h5dump -a /steps "$out/$1.h5" | awk '/\(0\)/ { print $2 }')
     echo "| $1 | $t | $steps | $w |"
   done

@@ -36,7 +36,7 @@ $(AC)/dem/disc.h5: | build
 # bound-<integrator>.txt: "dt_bound omega_max" of the smooth problem, from a one-step run (kept: its final
 # positions, one step after the kick, are the start the displacement scale is measured from).
 $(AC)/dem/bound-%.txt: $(AC)/dem/disc.h5 data/scenes/pulse.ini | build
-	@$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/pulse.ini $< -q -o $(AC)/dem/bound-$*.h5 $(AC_DEM_SMOOTH) \
+	@$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/pulse.ini $< -q -o $(AC)/dem/bound-$*.h5 $(AC_DEM_SMOOTH) \
 	  --integrator.kind $* --integrator.dt auto --stop.max_steps 1
 	@echo "$$($(BIN)/observables $(AC)/dem/bound-$*.h5 --parameter derived.dt_bound) \
 	  $$($(BIN)/observables $(AC)/dem/bound-$*.h5 --parameter derived.omega_max)" > $@
@@ -50,7 +50,7 @@ $(AC)/dem/dt/%.h5: $(AC)/dem/disc.h5 $$(AC)/dem/bound-$$(firstword $$(subst -, ,
 	n=$$(awk -v T=$(AC_DEM_T) -v l=$$level '{ n = int(T / $$1); if (n * $$1 < T) n++; printf "%d", n * 2 ^ l }' $(word 2,$^)); \
 	dt=$$(awk -v T=$(AC_DEM_T) -v n=$$n 'BEGIN { printf "%.17g", T / n }'); \
 	echo "dem-run pulse, beams only: $$kind, $$start start, 2^-$$level of the bound ($$n steps)"; \
-	$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run --scene data/scenes/pulse.ini $< -q -o $@ $(AC_DEM_SMOOTH) \
+	$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/pulse.ini $< -q -o $@ $(AC_DEM_SMOOTH) \
 	  --integrator.kind $$kind --integrator.start $$start --integrator.dt $$dt --stop.max_steps $$n
 
 # One row per run: series,integrator,start,level,dt_s,omega_dt,steps,wall_s,loop_s,peak_MB,cell_steps_per_s,
@@ -102,7 +102,7 @@ $(AC)/dem/res/mesh-%.h5: | build
 
 $(AC)/dem/res/%.h5: $(AC)/dem/res/mesh-%.h5 data/scenes/uniaxial.ini | build
 	@echo "dem-run uniaxial beam lattice, $* cells"
-	@$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run --scene data/scenes/uniaxial.ini $< -q -o $@ $(AC_DEM_UNIAXIAL)
+	@$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/uniaxial.ini $< -q -o $@ $(AC_DEM_UNIAXIAL)
 
 $(AC)/dem/res/%.row: $(AC)/dem/res/%.h5
 	@read -r wall mem < $(AC)/dem/res/$*.time; cells=$$(h5ls $</particles/cells/mass | sed 's/.*{\([0-9]*\)}.*/\1/'); \
@@ -125,7 +125,7 @@ $(AC)/dem/wave/mesh-%.h5: | build
 
 $(AC)/dem/wave/%.h5: $(AC)/dem/wave/mesh-%.h5 data/scenes/pulse.ini | build
 	@echo "dem-run pulse, beams only, $* cells"
-	@$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run --scene data/scenes/pulse.ini $< -q -o $@ \
+	@$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/pulse.ini $< -q -o $@ \
 	  --physics.contacts off --loading.energy 5 --stop.t_max 4e-4 --output.frame_interval 1e-5 --integrator.dt auto
 
 $(AC)/dem/wave/%.row: $(AC)/dem/wave/%.h5
@@ -157,7 +157,7 @@ $(AC)/frag/mesh-%.h5: | build
 $(AC)/frag/runs/%.h5: $$(AC)/frag/mesh-$$(firstword $$(subst -, ,$$*))-$$(lastword $$(subst -, ,$$*)).h5 data/scenes/explosion.ini | build
 	@mkdir -p $(@D)
 	@IFS=- read -r cells ns seed <<< "$*"; echo "dem-run explosion $$cells cells, dt = $$ns ns, $$seed"; \
-	$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run --scene data/scenes/explosion.ini $< -q -o $@ $(AC_FRAG_OPTIONS) \
+	$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/explosion.ini $< -q -o $@ $(AC_FRAG_OPTIONS) \
 	  --integrator.dt $$(awk -v ns=$$ns 'BEGIN { printf "%.17g", ns * 1e-9 }')
 
 $(AC)/frag/runs/%.frag.h5: $(AC)/frag/runs/%.h5
@@ -218,7 +218,7 @@ $(AC)/rubber/mesh-%.h5: | build
 	$(LAUNCH) $(BIN)/mesh-gen triangular --nodes $* --spacing $$(awk -v n=$$(echo $* | cut -dx -f1) 'BEGIN { printf "%.6g", 0.16 / n }') -q -o $@
 
 $(AC)/rubber/bound-%.txt: $(AC)/rubber/mesh-$(AC_RUB_DT_MESH).h5 data/scenes/wave.ini | build
-	@$(RUN_ENV) $(LAUNCH) $(BIN)/rubber-run --scene data/scenes/wave.ini $< -q -o $(AC)/rubber/bound-$*.h5 \
+	@$(RUN_ENV) $(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene data/scenes/wave.ini $< -q -o $(AC)/rubber/bound-$*.h5 \
 	  $(call ac_rubber_law,$(AC_RUB_DT_MESH)) $(AC_RUB_PULSE) --integrator.kind $* --stop.max_steps 1
 	@echo "$$($(BIN)/observables $(AC)/rubber/bound-$*.h5 --parameter derived.dt_bound) \
 	  $$($(BIN)/observables $(AC)/rubber/bound-$*.h5 --parameter derived.omega_max)" > $@
@@ -232,7 +232,7 @@ $(AC)/rubber/dt/%.h5: $(AC)/rubber/mesh-$(AC_RUB_DT_MESH).h5 $$(AC)/rubber/bound
 	n=$$(awk -v T=$(AC_RUB_T) -v l=$$level '{ n = int(T / $$1); if (n * $$1 < T) n++; printf "%d", n * 2 ^ l }' $(word 2,$^)); \
 	dt=$$(awk -v T=$(AC_RUB_T) -v n=$$n 'BEGIN { printf "%.17g", T / n }'); \
 	echo "rubber-run wave, $$kind, 2^-$$level of the bound ($$n steps)"; \
-	$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/rubber-run --scene data/scenes/wave.ini $< -o $@ \
+	$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/rubber-run $(THREADS_OPT) --scene data/scenes/wave.ini $< -o $@ \
 	  $(call ac_rubber_law,$(AC_RUB_DT_MESH)) $(AC_RUB_PULSE) --integrator.kind $$kind --integrator.dt $$dt --stop.max_steps $$n 2> $(basename $@).log
 
 # Energy drift: max |E(t) − E(0)| over the pulse energy 2·E_kin(T) (a travelling wave carries as much
@@ -267,7 +267,7 @@ AC_RUB_MESHES := $(if $(MINI),40x4 100x10,40x4 63x6 100x10 200x20 400x40)
 $(AC)/rubber/res/%.h5: $(AC)/rubber/mesh-%.h5 data/scenes/wave.ini | build
 	@mkdir -p $(@D)
 	@echo "rubber-run wave, $* nodes"
-	@$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/rubber-run --scene data/scenes/wave.ini $< -o $@ \
+	@$(RUN_ENV) $(LAUNCH) $(AC_TIME) $(BIN)/rubber-run $(THREADS_OPT) --scene data/scenes/wave.ini $< -o $@ \
 	  $(call ac_rubber_law,$*) $(AC_RUB_PULSE) 2> $(basename $@).log
 
 $(AC)/rubber/res/%.row: $(AC)/rubber/res/%.h5

@@ -18,7 +18,7 @@ $(CC)/mesh-s%.h5: | build
 
 $(CC)/run-s%.h5: $(CC)/mesh-s%.h5 data/scenes/confined-compression.ini | build
 	@echo "dem-run confined-compression seed $*"
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/confined-compression.ini $< -q -o $@
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/confined-compression.ini $< -q -o $@
 
 # σ(ε) per seed, compression positive (the paper plots it so).
 $(CC)/curve-s%.csv: $(CC)/run-s%.h5

@@ -19,7 +19,7 @@ $(DEMO)/disc.h5: | build
 
 # The run: progress on stderr, a line every few seconds (about 5 s on one core).
 $(DEMO)/explosion.h5: $(DEMO)/disc.h5 data/scenes/explosion.ini | build
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/explosion.ini $< --seed $(DEMO_SEED) -o $@ $(DEMO_RUN_OPTIONS) \
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/explosion.ini $< --seed $(DEMO_SEED) -o $@ $(DEMO_RUN_OPTIONS) \
 	  2>&1 | tee $(DEMO)/explosion.log
 	$(BIN)/h5-xdmf $@ -q
 

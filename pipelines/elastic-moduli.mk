@@ -31,7 +31,7 @@ $(EM)/runs/E%.h5: $$(EM)/mesh-$$(lastword $$(subst -, ,$$*)).h5 data/scenes/unia
 	  beams) opts="--loading.direction tension --physics.contacts off --physics.damping off" ;; \
 	esac; \
 	echo "dem-run uniaxial E=$$modulus $$mode seed $$seed"; \
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/uniaxial.ini $< --material.beam_modulus $$modulus $$opts -q -o $@
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/uniaxial.ini $< --material.beam_modulus $$modulus $$opts -q -o $@
 
 # One line per run: E mode seed K K_err nu nu_err
 $(EM)/runs/%.fit: $(EM)/runs/%.h5

@@ -26,7 +26,7 @@ $(EX)/mesh-s%.h5: | build
 $(EX)/runs/%.h5: $$(EX)/mesh-$$(lastword $$(subst -, ,$$*)).h5 data/scenes/explosion.ini | build
 	@mkdir -p $(@D)
 	@IFS=- read -r teps ttheta seed <<< "$*"; echo "dem-run explosion t_eps $$teps % t_theta $$ttheta° $$seed"; \
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/explosion.ini $< -q -o $@ \
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/explosion.ini $< -q -o $@ \
 	  --material.t_eps $$(awk -v p=$$teps 'BEGIN { print p / 100 }') --material.t_theta_deg $$ttheta $(EX_RUN_OPTIONS)
 
 $(EX)/runs/%.frag.h5: $(EX)/runs/%.h5
@@ -83,7 +83,7 @@ $(EX)/snapshots: $(EX)/runs/3-4-s$(EX_S1).h5 $(EX)/runs/3-4-s$(EX_S1).frag.h5
 
 # The elastic pulse with breaking off (Fig. 10): snapshots at 1e-4, 3e-4 and 5e-4 s.
 $(EX)/pulse.h5: $(EX)/mesh-s$(EX_S1).h5 data/scenes/pulse.ini | build
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/pulse.ini $< -q -o $@ $(if $(MINI),--stop.t_max 2e-4,)
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/pulse.ini $< -q -o $@ $(if $(MINI),--stop.t_max 2e-4,)
 
 $(EX)/pulse: $(EX)/pulse.h5
 	@mkdir -p $@

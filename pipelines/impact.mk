@@ -18,7 +18,7 @@ $(IM)/mesh-s%.h5: | build
 
 $(IM)/run-s%.h5: $(IM)/mesh-s%.h5 data/scenes/impact.ini | build
 	@echo "dem-run impact seed $*"
-	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run --scene data/scenes/impact.ini $< -q -o $@ $(IM_RUN_OPTIONS)
+	$(RUN_ENV) $(LAUNCH) $(BIN)/dem-run $(THREADS_OPT) --scene data/scenes/impact.ini $< -q -o $@ $(IM_RUN_OPTIONS)
 
 $(IM)/frag-s%.h5: $(IM)/run-s%.h5
 	$(BIN)/fragment-count $< --min-cells 2 -q -o $@

@@ -50,12 +50,12 @@ $(RC)/strip.h5: | build
 
 $(RC)/lever-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run lever $*"
-	$(LAUNCH) $(BIN)/rubber-run --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_OPT_$*) -o $@ 2> $(@:.h5=.log)
+	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_OPT_$*) -o $@ 2> $(@:.h5=.log)
 
 $(RC)/stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run stretch_y $*"
 	uc=$$(awk -v l=$* 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.12) }'); \
-	$(LAUNCH) $(BIN)/rubber-run --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_SOFT) --loading.stretch_y $* \
+	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_SOFT) --loading.stretch_y $* \
 	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
 
 # One row per run: advance of the tip, speed over the last part of the advance (at least 20Δ of it, after the

@@ -29,9 +29,9 @@ $(RW)/speeds-%.txt: $(RW)/line.h5 data/scenes/wave.ini | build
 	half=$$(awk -v n=$(firstword $(subst x, ,$(RW_NODES))) 'BEGIN { print (n / 2 - 0.5) * 1e-3 * 1.2 }'); \
 	tmax=$$(awk -v h=$$half -v c=$$c 'BEGIN { printf "%.6g", 1.02 * h / c }'); \
 	uc=$$(awk -v l=$$ly 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.9) }'); \
-	$(RUN_ENV) $(LAUNCH) $(BIN)/rubber-run --scene data/scenes/wave.ini $< --loading.stretch_y $$ly --law.cutoff_length $$uc \
+	$(RUN_ENV) $(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene data/scenes/wave.ini $< --loading.stretch_y $$ly --law.cutoff_length $$uc \
 	  --pulse.kind $$mode --pulse.width $(RW_WIDTH) --stop.t_max $$tmax \
-	  --output.frame_interval $$(awk -v t=$$tmax 'BEGIN { printf "%.6g", t / 150 }') --threads 1 -q -o $(@:.txt=.h5); \
+	  --output.frame_interval $$(awk -v t=$$tmax 'BEGIN { printf "%.6g", t / 150 }') -q -o $(@:.txt=.h5); \
 	$(BIN)/wave-speed $(@:.txt=.h5) --format text -q -o $@; rm -f $(@:.txt=.h5)
 
 # One row per stretch: λy, then per mode the measured speed, its error, the prediction and the deviation.

@@ -4,6 +4,7 @@
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/provenance.hpp"
 #include "core/scene.hpp"
@@ -26,7 +27,8 @@ int main(int argc, char** argv) {
         "resolved scene, trajectory frames, observables and beam-break events (docs/SCHEMA.md).",
         "  mesh-gen voronoi --shape disc --diameter 0.4 --cells 1100 --seed 7 -o disc.h5\n"
         "  dem-run --scene data/scenes/explosion.ini disc.h5 -o explosion.h5\n"
-        "  dem-run --scene data/scenes/explosion.ini disc.h5 --material.t_eps 0.02 --integrator.kind verlet -o e.h5"};
+        "  dem-run --scene data/scenes/explosion.ini disc.h5 --material.t_eps 0.02 --integrator.kind verlet -o e.h5\n"
+        "  dem-run --scene data/scenes/explosion.ini disc.h5 --threads 2 -o explosion.h5   # same bits, faster"};
     std::vector<std::pair<std::string, std::string>> overrides;
     const auto args = cli::split_overrides(argc, argv, overrides);
     cli::CommonOptions common;
@@ -34,10 +36,11 @@ int main(int argc, char** argv) {
     po::options_description desc("Options");
     desc.add_options()("input", po::value(&input)->required(), "mesh file, or - for standard input")(
         "scene", po::value(&scene_path)->required(), "scene file (INI)");
-    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed);
+    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed | cli::kThreads);
     po::positional_options_description positional;
     positional.add("input", 1);
     const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
+    set_threads(common.threads);
 
     Scene scene = Scene::load(scene_path, overrides);
     const dem::DemScene resolved = dem::read_dem_scene(scene);

@@ -37,17 +37,13 @@ int main(int argc, char** argv) {
     const auto args = cli::split_overrides(argc, argv, overrides);
     cli::CommonOptions common;
     std::string input, scene_path;
-    int threads = 1;
     po::options_description desc("Options");
     desc.add_options()("input", po::value(&input)->required(), "mesh file, or - for standard input")(
-        "scene", po::value(&scene_path)->required(), "scene file (INI)")(
-        "threads", po::value(&threads)->default_value(1),
-        "threads for the force loops (0: all cores); the result does not depend on it");
-    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed);
+        "scene", po::value(&scene_path)->required(), "scene file (INI)");
+    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed | cli::kThreads);
     po::positional_options_description positional;
     positional.add("input", 1);
     const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
-    if (threads < 0) throw UsageError("--threads: must not be negative");
 
     Scene scene = Scene::load(scene_path, overrides);
 
@@ -62,7 +58,7 @@ int main(int argc, char** argv) {
     const rubber::RubberSetup setup = rubber::prepare_rubber(resolved, mesh);
     if (!common.quiet)
       for (const auto& w : setup.warnings) std::cerr << "rubber-run: warning: " << w << "\n";
-    rubber::RubberSystem system = rubber::build_rubber(mesh, setup, common.seed, threads);
+    rubber::RubberSystem system = rubber::build_rubber(mesh, setup, common.seed, common.threads);
 
     ToolRun run = start_run("rubber-run", cli::command_line(argc, argv));
     run.seed = std::to_string(common.seed);

@@ -19,6 +19,12 @@ void add_common(po::options_description& desc, CommonOptions& common, unsigned w
   if (which & kSeed) add("seed", po::value(&common.seed)->default_value(1), "seed of the random generator");
   if (which & kQuiet) add("quiet,q", po::bool_switch(&common.quiet), "print nothing but errors");
   if (which & kConfig) add("config", po::value(&common.config), "read options from FILE (key = value lines)");
+  if (which & kThreads)
+    add("threads", po::value(&common.threads)->default_value(1)->notifier([](int t) {
+      if (t < 0) throw UsageError("--threads: must not be negative");
+    }),
+        "threads for the force loops (0: all cores); the result does not depend on it. One thread is the "
+        "efficient choice when several runs share the machine (make -j)");
 }
 
 po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec, po::options_description& desc,

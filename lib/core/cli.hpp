@@ -30,8 +30,9 @@ struct CommonOptions {
   bool quiet = false;
   std::uint64_t seed = 1;
   std::string config;
+  int threads = 1;  // 0: all cores
 };
-enum Common : unsigned { kOutput = 1, kQuiet = 2, kSeed = 4, kConfig = 8 };
+enum Common : unsigned { kOutput = 1, kQuiet = 2, kSeed = 4, kConfig = 8, kThreads = 16 };
 void add_common(po::options_description& desc, CommonOptions& common, unsigned which);
 
 // Thrown to end a tool early with an exit code (after --help or --version).

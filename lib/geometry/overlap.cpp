@@ -103,7 +103,7 @@ bool shared_edge(const Vec2& u, const Vec2& v, const EdgeTable& other, double to
 // n perpendicular to the contact line (p2 - p1 != 0), oriented from i toward j.
 Vec2 line_normal(const Vec2& p1, const Vec2& p2, const Vec2& dc) {
   const Vec2 t = p2 - p1;
-  Vec2 n = perp(t) / std::hypot(t.x(), t.y());
+  Vec2 n = perp(t) / std::sqrt(t.squaredNorm());  // lengths ≥ eps_L ~ 1e-11 m: no under/overflow
   const double s = n.dot(dc);
   if (s < 0.0 || (s == 0.0 && (n.x() < 0.0 || (n.x() == 0.0 && n.y() < 0.0)))) n = -n;
   return n;

@@ -86,11 +86,11 @@ case $case in
     "$mg" voronoi --shape rect --size 0.7704x0.642 --cells 72x60 --seed 5 -q -o big.h5
     dissipative=(--physics.damping on --material.gamma_n 1e4 --physics.friction on --material.friction 0.3
                  --material.gamma_t 1e4 --seed 11 -q)
-    OMP_NUM_THREADS=1 "$dr" --scene "$scenes/impact.ini" block.h5 --stop.t_max 5e-4 "${dissipative[@]}" -o a.h5
-    OMP_NUM_THREADS=1 "$dr" --scene "$scenes/impact.ini" block.h5 --stop.t_max 5e-4 "${dissipative[@]}" -o b.h5
+    "$dr" --threads 1 --scene "$scenes/impact.ini" block.h5 --stop.t_max 5e-4 "${dissipative[@]}" -o a.h5
+    "$dr" --threads 1 --scene "$scenes/impact.ini" block.h5 --stop.t_max 5e-4 "${dissipative[@]}" -o b.h5
     h5diff --exclude-path /provenance a.h5 b.h5 || fail "second run differs"
-    OMP_NUM_THREADS=1 "$dr" --scene "$scenes/impact.ini" big.h5 --stop.t_max 3e-5 "${dissipative[@]}" -o c1.h5
-    OMP_NUM_THREADS=2 "$dr" --scene "$scenes/impact.ini" big.h5 --stop.t_max 3e-5 "${dissipative[@]}" -o c2.h5
+    "$dr" --threads 1 --scene "$scenes/impact.ini" big.h5 --stop.t_max 3e-5 "${dissipative[@]}" -o c1.h5
+    "$dr" --threads 2 --scene "$scenes/impact.ini" big.h5 --stop.t_max 3e-5 "${dissipative[@]}" -o c2.h5
     h5diff --exclude-path /provenance c1.h5 c2.h5 || fail "1 and 2 threads differ"
     # The runs did something: beams broke.
     (( $(break_events a.h5) > 0 )) || fail "no beam broke"
