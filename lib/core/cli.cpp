@@ -24,7 +24,8 @@ void add_common(po::options_description& desc, CommonOptions& common, unsigned w
       if (t < 0) throw UsageError("--threads: must not be negative");
     }),
         "threads for the force loops (0: all cores); the result does not depend on it. One thread is the "
-        "efficient choice when several runs share the machine (make -j)");
+        "efficient choice when several runs share the machine (make -j); with more, on a busy machine, set "
+        "OMP_WAIT_POLICY=passive");
 }
 
 po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec, po::options_description& desc,

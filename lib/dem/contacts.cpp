@@ -135,38 +135,36 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   const auto& r = bodies_->bound_radius;
   const auto& d = bodies_->diameter;
   const double g = bodies_->length_scale;
-  candidates_.clear();
-  for (std::size_t p = 0; p < neighbours_.size(); ++p) {
-    auto& pair = neighbours_[p];
-    const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
-    const double dx = x[j] - x[i], dy = y[j] - y[i];
-    const double reach = r[i] + r[j];
-    if (dx * dx + dy * dy < reach * reach)
-      candidates_.push_back(static_cast<std::int32_t>(p));
-    else
-      pair.overlapping = false;
-  }
-  out.candidate_pairs = static_cast<std::int64_t>(candidates_.size());
-  if (geometry_.size() < candidates_.size()) geometry_.resize(candidates_.size() + candidates_.size() / 4);
   // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep,
   // so the order of the tests changes no result, only the time: a pair that overlapped at the last
   // search goes straight to clipping; the others try the facing edges that last separated them (cached
   // per pair), then the current facing edges, which become the cached ones when they separate.
+  // Each neighbour pair in parallel, into its own slot (dynamic schedule: pairs that clip cost ten times
+  // those that do not), then the list filled in pair order.
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
-  const auto count = static_cast<std::ptrdiff_t>(candidates_.size());
-#pragma omp parallel for schedule(static) if (count > static_cast<std::ptrdiff_t>(kMinParallelItems))
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
-    auto& pair = neighbours_[static_cast<std::size_t>(candidates_[static_cast<std::size_t>(k)])];
+  const std::size_t pairs = neighbours_.size();
+  if (geometry_.size() < pairs) {
+    geometry_.resize(pairs + pairs / 4);
+    pair_state_.resize(pairs + pairs / 4);
+  }
+#pragma omp parallel for schedule(dynamic, 64) if (pairs > kMinParallelItems)
+  for (std::size_t p = 0; p < pairs; ++p) {
+    auto& pair = neighbours_[p];
     const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
+    const double dx = x[j] - x[i], dy = y[j] - y[i];
+    const double reach = r[i] + r[j];
+    if (!(dx * dx + dy * dy < reach * reach)) {
+      pair.overlapping = false;
+      pair_state_[p] = PairState::apart;
+      continue;
+    }
+    pair_state_[p] = PairState::candidate;
     const auto pi = world_polygon(i), pj = world_polygon(j);
-    const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
-    auto& geo = geometry_[static_cast<std::size_t>(k)];
-    geo.kind = geometry::ContactGeometry::Kind::none;
     if (!pair.overlapping) {
       if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
           geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
         continue;
-      const Vec2 dc = cj - ci;
+      const Vec2 dc(dx, dy);
       const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
       if (geometry::edge_separates(pi, fi, pj, slack) || geometry::edge_separates(pj, fj, pi, slack)) {
         pair.edge_i = static_cast<std::int32_t>(fi);
@@ -174,13 +172,20 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
         continue;
       }
     }
-    geo = geometry::convex_overlap(pi, pj, ci, cj, g, static_cast<std::size_t>(pair.edge_j));
+    const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
+    const auto geo = geometry::convex_overlap(pi, pj, ci, cj, g, static_cast<std::size_t>(pair.edge_j));
     pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
+    if (pair.overlapping) {
+      geometry_[p] = geo;
+      pair_state_[p] = PairState::overlapping;
+    }
   }
-  for (std::size_t k = 0; k < candidates_.size(); ++k) {
-    const auto& geo = geometry_[k];
-    if (geo.kind == geometry::ContactGeometry::Kind::none) continue;
-    const auto& pair = neighbours_[static_cast<std::size_t>(candidates_[k])];
+  for (std::size_t p = 0; p < pairs; ++p) {
+    if (pair_state_[p] == PairState::apart) continue;
+    ++out.candidate_pairs;
+    if (pair_state_[p] != PairState::overlapping) continue;
+    const auto& geo = geometry_[p];
+    const auto& pair = neighbours_[p];
     const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
     if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
     if (geo.distinct_crossings > 2) ++out.multi_crossing;

@@ -82,8 +82,9 @@ class ContactSearch {
   };
   std::vector<NeighbourPair> neighbours_;
   std::int64_t rebuilds_ = 0;
-  std::vector<std::int32_t> candidates_;  // indices of the pairs whose bounding circles overlap now
-  std::vector<geometry::ContactGeometry> geometry_;      // one slot per candidate (filled in parallel)
+  enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
+  std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)
+  std::vector<geometry::ContactGeometry> geometry_;  // one slot per neighbour pair, set where overlapping
 };
 
 struct ContactParameters {

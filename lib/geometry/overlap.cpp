@@ -206,7 +206,7 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
     cancelled = false;
     for (std::size_t k = 0; k < count; ++k) {
       const std::size_t k1 = k + 1 == count ? 0 : k + 1;
-      if ((cross_pt[k] - cross_pt[k1]).norm() > eps_len) continue;
+      if ((cross_pt[k] - cross_pt[k1]).squaredNorm() > eps_len * eps_len) continue;
       // Remove entries k and k1 (k1 == 0 when k is the last one).
       std::size_t w = 0;
       for (std::size_t s = 0; s < count; ++s) {
