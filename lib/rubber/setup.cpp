@@ -92,6 +92,11 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
 
   r.seed_length = s.non_negative("crack.seed_length", 0.0);
   r.tip_kick = s.non_negative("crack.tip_kick", 0.0);
+  r.drive_speed = s.non_negative("crack.drive_speed", 0.0);
+  r.drive_length = s.non_negative("crack.drive_length", 0.0);
+  if ((r.drive_speed > 0) != (r.drive_length > 0))
+    throw UsageError(s.name() + ": crack.drive_speed and crack.drive_length go together (both positive: the driven "
+                     "seed; both 0: off)");
 
   r.pulse_kind = s.choice("pulse.kind", r.pulse_kind, {"longitudinal", "shear"});
   r.pulse_direction = s.choice("pulse.direction", r.pulse_direction, {"x", "y"});

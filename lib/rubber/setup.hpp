@@ -48,6 +48,7 @@ struct RubberScene {
   bool periodic_x = false, periodic_y = false;
   // [crack]
   double seed_length = 0, tip_kick = 0;  // m, m/s
+  double drive_speed = 0, drive_length = 0;  // m/s (lab), m (reference): the driven seed (crack_drive.hpp); 0: off
   // [pulse]
   std::string pulse_kind = "longitudinal", pulse_direction = "x";
   double pulse_amplitude = 0, pulse_width = 0, pulse_position = 0.5;  // m, m, fraction
