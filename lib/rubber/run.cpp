@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "rubber/lattice.hpp"
+#include "rubber/three_body_residual.hpp"
 
 namespace frac::rubber {
 
@@ -24,7 +25,9 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   mo.damping_onset = sc.damping_onset;
   mo.break_extra = sc.irreversible ? sc.break_widths * sc.cutoff_width : std::numeric_limits<double>::infinity();
   mo.threads = threads;
-  sys.model = std::make_unique<Model>(build_lattice(mesh, sc.periodic_x, sc.periodic_y), mo);
+  Lattice lattice = build_lattice(mesh, sc.periodic_x, sc.periodic_y);
+  if (sc.three_body_residual > 0) mo.residual = three_body_residual(su.law, lattice, su.F, sc.three_body_residual);
+  sys.model = std::make_unique<Model>(std::move(lattice), mo);
   Model& model = *sys.model;
   const Lattice& L = model.lattice();
   const std::size_t n = L.n;

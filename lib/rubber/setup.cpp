@@ -38,6 +38,10 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   r.cutoff = s.choice("law.cutoff", r.cutoff, cutoff_law_names());
   r.angle = s.choice("law.angle", r.angle, angle_law_names());
   r.three_body_weight = s.choice("law.three_body_weight", r.three_body_weight, three_body_weight_names());
+  r.three_body_residual = s.non_negative("law.three_body_residual", 0.0);
+  if (!(r.three_body_residual < 1))
+    throw UsageError(s.name() + ": law.three_body_residual must lie in [0, 1) (the fraction of the far-field three-body "
+                     "energy a failed pair keeps)");
   r.short_width = s.positive("law.short_width", 0.1 * d);
   r.cutoff_length = s.positive("law.cutoff_length", 3.5 * d);
   r.cutoff_width = s.positive("law.cutoff_width", 0.05 * d);

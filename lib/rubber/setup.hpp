@@ -28,6 +28,7 @@ struct RubberScene {
   // [law]
   std::string pair = "marder", cutoff = "fermi", angle = "marder";
   std::string three_body_weight = "pair";  // pair | all_bonds (bond_law.hpp)
+  double three_body_residual = 0;  // κ in [0, 1): 0, the paper's law (three_body_residual.hpp)
   double short_width = 0, cutoff_length = 0, cutoff_width = 0;  // m
   // [physics] and their parameters
   bool damping = false;
