@@ -87,13 +87,17 @@ int main(int argc, char** argv) {
       line << ", crack tip advanced " << (s.tip.reference_x - s.tip_start.reference_x) / mesh.spacing
            << " spacings (last speed " << s.tip_speed << " m/s; lattice c_T " << setup.lattice_x.transverse
            << ", c_L " << setup.lattice_x.longitudinal << " m/s along x)";
+    if (system.drive)
+      line << ", the driven seed cut " << s.driven << " bonds (knife's work " << s.drive_energy << " J)";
     line << ", energy " << s.energy_start << " -> " << s.energy_end << " J, " << s.wall_seconds << " s wall ("
          << s.ns_per_node_step() << " ns per node-step on " << system.model->threads() << " thread"
          << (system.model->threads() > 1 ? "s" : "") << ")";
     progress.finish(line.str());
     // Without damping the total energy is conserved up to the integration error (and the small
-    // three-body remainder of irreversibly broken bonds): say so when it is not.
-    const double change = std::abs(s.energy_end - s.energy_start) / std::max(std::abs(s.energy_start), 1e-300);
+    // three-body remainder of irreversibly broken bonds, and the work of a driven seed's knife, which is
+    // booked): say so when it is not.
+    const double change =
+        std::abs(s.energy_end - s.energy_start - s.drive_energy) / std::max(std::abs(s.energy_start), 1e-300);
     if (!resolved.damping && change > 0.01 && !common.quiet)
       std::cerr << "rubber-run: warning: the total energy changed by " << 100 * change
                 << "% without damping: the time step is too large for this scene (lower integrator.safety)\n";

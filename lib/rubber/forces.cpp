@@ -54,8 +54,20 @@ inline double all_bonds_weight(const Slots& s, double* others) {
 // Three-body energy T_i and the derivatives D(i,s) (pair term included) for a quadratic g, through the
 // moments of the neighbour vectors. With Energy, only T is computed. With the weight over all bonds
 // (Wt::all_bonds) the three-body part is W T, and its derivative W ∂T/∂a_s + T (Π_{t≠s} h_t) h'_s â_s.
+// The residual part of T, −Σ_{s≠t} h_s h_t c_st, and its derivatives 2·(−Σ_{t≠s} c_st h_t) into dh[s].
+inline double residual_part(const double* res, const Slots& s, double* dh) {
+  double T = 0;
+  for (int k = 0; k < 6; ++k) {
+    double r = 0;
+    for (int t = 0; t < 6; ++t) r += res[6 * k + t] * s.h[t];  // c_kk = 0
+    T -= s.h[k] * r;
+    dh[k] = -2 * r;
+  }
+  return T;
+}
+
 template <bool Energy, class Wt, class G>
-inline double centre_moments(const G& g, const Slots& s, double* D) {
+inline double centre_moments(const G& g, const Slots& s, double* D, const double* res) {
   double H1 = 0, H2 = 0, Sx = 0, Sy = 0, Mxx = 0, Mxy = 0, Myy = 0, P2 = 0, P4 = 0;
   for (int k = 0; k < 6; ++k) {
     const double h = s.h[k], ax = s.ax[k], ay = s.ay[k];
@@ -73,8 +85,11 @@ inline double centre_moments(const G& g, const Slots& s, double* D) {
     P4 += q * r2;
   }
   const double c2 = g.c2, c1 = g.c1, c0 = g.c0;
-  const double T =
+  double T =
       c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
+  double dres[6] = {0, 0, 0, 0, 0, 0};
+  if (res) [[unlikely]]
+    T += residual_part(res, s, dres);
   // The weight and the products of the other slots' cut-offs (only with Wt::all_bonds; the paper's
   // path computes exactly what it did without the weight).
   double others[6];
@@ -92,7 +107,7 @@ inline double centre_moments(const G& g, const Slots& s, double* D) {
       const double hr2 = h * r2;
       // ∂T/∂a at fixed h, then the chain rule through h(|a|) along a (h' â = (h'/u) a), plus f' â;
       // weighted: W ∂T/∂a + T (Π_{t≠s} h_t) h'_s â_s.
-      const double coef = 2 * (c2 * (aMa - hr2 * r2) + c1 * (Sa - hr2) + c0 * (H1 - h));
+      const double coef = 2 * (c2 * (aMa - hr2 * r2) + c1 * (Sa - hr2) + c0 * (H1 - h)) + dres[k];
       double dT = coef;
       if constexpr (Wt::all_bonds) dT = W * coef + T * others[k];
       const double along = dT * s.hpu[k] + s.fpu[k];
@@ -105,7 +120,7 @@ inline double centre_moments(const G& g, const Slots& s, double* D) {
 
 // The same by the loop over the 15 unordered pairs of slots (30 ordered pairs): any g.
 template <bool Energy, class Wt, class G>
-inline double centre_pairs(const G& g, const Slots& s, double* D) {
+inline double centre_pairs(const G& g, const Slots& s, double* D, const double* res) {
   double S1[6] = {}, S2x[6] = {}, S2y[6] = {};
   double T = 0;
   for (int j = 0; j < 6; ++j)
@@ -122,6 +137,11 @@ inline double centre_pairs(const G& g, const Slots& s, double* D) {
         S2y[k] += s.h[j] * gv.d * s.ay[j];
       }
     }
+  if (res) [[unlikely]] {
+    double dres[6];
+    T += residual_part(res, s, dres);
+    for (int k = 0; k < 6; ++k) S1[k] += 0.5 * dres[k];  // S1 is half of ∂T/∂h
+  }
   if constexpr (Wt::all_bonds) {
     double others[6];
     const double W = all_bonds_weight(s, others);
@@ -148,9 +168,9 @@ inline double centre_pairs(const G& g, const Slots& s, double* D) {
 }
 
 template <bool Energy, class Wt, class G>
-inline double centre(const G& g, const Slots& s, double* D) {
-  if constexpr (G::quadratic) return centre_moments<Energy, Wt>(g, s, D);
-  else return centre_pairs<Energy, Wt>(g, s, D);
+inline double centre(const G& g, const Slots& s, double* D, const double* res) {
+  if constexpr (G::quadratic) return centre_moments<Energy, Wt>(g, s, D, res);
+  else return centre_pairs<Energy, Wt>(g, s, D, res);
 }
 
 template <class P, class H, class G, DampingKind K, class Wt>
@@ -218,7 +238,7 @@ struct Passes {
     Slots s;
     for (std::size_t i = i0; i < i1; ++i) {
       load_slots(c, i, s);
-      centre<false, Wt>(g, s, c.D + 12 * i);
+      centre<false, Wt>(g, s, c.D + 12 * i, c.residual);
     }
   }
 
@@ -283,7 +303,13 @@ struct Passes {
           }
         }
         load_slots(c, i, s);
-        et += centre<true, Wt>(g, s, nullptr);
+        et += centre<true, Wt>(g, s, nullptr, c.residual);
+        if (c.residual) [[unlikely]]  // the constant Σ c_st over the node's existing slots
+          for (std::size_t a = 0; a < 6; ++a)
+            for (std::size_t b = 0; b < 6; ++b)
+              if (a != b && static_cast<std::size_t>(c.nbr[6 * i + a]) < c.n &&
+                  static_cast<std::size_t>(c.nbr[6 * i + b]) < c.n)
+                et += c.residual[6 * a + b];
       }
       c.block_energy[2 * k] = ep;
       c.block_energy[2 * k + 1] = et;

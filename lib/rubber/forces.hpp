@@ -55,6 +55,8 @@ struct ForceContext {
   const void* pair = nullptr;    // the evaluators (concrete types known to the instantiated passes)
   const void* cutoff_law = nullptr;
   const void* angle = nullptr;
+  // The three-body residual (three_body_residual.hpp): c_st, 6 × 6, or nullptr (the paper's law).
+  const double* residual = nullptr;
 
   // Dynamics: events and irreversible breaking happen only when `track` is set.
   bool track = false;

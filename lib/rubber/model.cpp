@@ -44,6 +44,9 @@ Model::Model(Lattice lattice, ModelOptions options)
   std::visit([this](const auto& law) { ctx_.pair = &law; }, options_.law.pair);
   std::visit([this](const auto& law) { ctx_.cutoff_law = &law; }, options_.law.cutoff);
   std::visit([this](const auto& law) { ctx_.angle = &law; }, options_.law.angle);
+  if (!options_.residual.empty() && options_.residual.size() != 36)
+    throw UsageError("three-body residual: 36 values (6 x 6 slots) expected");
+  ctx_.residual = options_.residual.empty() ? nullptr : options_.residual.data();
   ctx_.break_extra = options_.break_extra;
   ctx_.beta = options_.beta;
   ctx_.damping_onset = options_.damping_onset;

@@ -32,6 +32,8 @@ struct ModelOptions {
   double beta = 0;                          // kg/s: F_i += β ((v_j − v_i)·û) û
   double damping_onset = 0;                 // m: near_failure damping ramps from 0 here to β at u_c
   double break_extra = std::numeric_limits<double>::infinity();  // m: irreversible past u_c + this
+  // The three-body residual c_st (three_body_residual.hpp), 36 values in J, or empty: the paper's law.
+  std::vector<double> residual;
   int threads = 1;
   // Fuse the three force passes row by row when the mesh has the row-major layout of mesh-gen (the
   // same numbers either way; false forces three passes over all nodes).

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "rubber/lattice.hpp"
+#include "rubber/three_body_residual.hpp"
 
 namespace frac::rubber {
 
@@ -24,7 +25,9 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   mo.damping_onset = sc.damping_onset;
   mo.break_extra = sc.irreversible ? sc.break_widths * sc.cutoff_width : std::numeric_limits<double>::infinity();
   mo.threads = threads;
-  sys.model = std::make_unique<Model>(build_lattice(mesh, sc.periodic_x, sc.periodic_y), mo);
+  Lattice lattice = build_lattice(mesh, sc.periodic_x, sc.periodic_y);
+  if (sc.three_body_residual > 0) mo.residual = three_body_residual(su.law, lattice, su.F, sc.three_body_residual);
+  sys.model = std::make_unique<Model>(std::move(lattice), mo);
   Model& model = *sys.model;
   const Lattice& L = model.lattice();
   const std::size_t n = L.n;
@@ -47,6 +50,8 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
 
   // The seed crack, along the mesh's crack line from the left edge.
   if (sc.seed_length > 0) sys.seeded = sys.path->seed(model, sc.seed_length);
+  if (sc.drive_speed > 0)
+    sys.drive = std::make_unique<CrackDrive>(*sys.path, sc.seed_length, sc.drive_speed, sc.drive_length, su.F(0, 0));
 
   // A localized pulse: Gaussian displacement (standard deviation pulse.width) of the lines across the
   // direction of propagation, along it (longitudinal) or across it (shear).
@@ -175,7 +180,7 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
   SpeedFit fit(window);
   const std::string k_kinetic = "kinetic_energy", k_potential = "potential_energy", k_total = "total_energy",
                     k_events = "bonds_past_cutoff", k_tip = "crack_tip_x", k_tip_ref = "crack_tip_reference_x",
-                    k_speed = "crack_tip_speed", k_tough = "toughened_bonds";
+                    k_speed = "crack_tip_speed", k_tough = "toughened_bonds", k_drive = "drive_energy";
 
   auto write_frame = [&](std::int64_t step) {
     if (!writer) return;
@@ -222,6 +227,7 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
     writer->observe(k_tip_ref, step, t, tip.found ? tip.reference_x : std::nan(""), "m");
     writer->observe(k_speed, step, t, sum.tip_speed, "m s-1");
     if (sc.toughening) writer->observe(k_tough, step, t, static_cast<double>(sum.toughened), "1");
+    if (sys.drive) writer->observe(k_drive, step, t, sum.drive_energy, "J");
   };
 
   auto collect_events = [&](std::int64_t step) {
@@ -272,6 +278,11 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
           << " s): " << model.diagnose_nonfinite(integ->q(), integ->a())
           << "; the time step may be too large for this scene";
       throw RuntimeError(msg.str());
+    }
+    if (sys.drive && !sys.drive->finished()) {
+      double change = 0;
+      sum.driven += sys.drive->cut(model, integ->t(), integ->q(), change);
+      sum.drive_energy += change;
     }
     collect_events(step);
     if (sc.toughening && step % sc.toughening_every == 0)

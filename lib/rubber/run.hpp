@@ -13,6 +13,7 @@
 #include "io/run_io.hpp"
 #include "mesh/node_mesh.hpp"
 #include "rubber/crack.hpp"
+#include "rubber/crack_drive.hpp"
 #include "rubber/model.hpp"
 #include "rubber/setup.hpp"
 
@@ -24,6 +25,7 @@ struct RubberSystem {
   std::unique_ptr<CrackPath> path;
   std::vector<double> q0, v0;
   std::size_t seeded = 0;  // crossing bonds cut by crack.seed_length (besides the mesh's notch)
+  std::unique_ptr<CrackDrive> drive;  // the driven seed (crack.drive_speed), null when off
 };
 RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& setup, std::uint64_t seed, int threads);
 
@@ -34,6 +36,8 @@ struct RubberSummary {
   std::size_t events = 0;           // bonds that went past their cut-off (once each)
   std::size_t irreversible = 0;     // bonds removed by irreversible breaking
   std::size_t toughened = 0;        // bonds whose cut-off was raised
+  std::size_t driven = 0;           // bonds the knife of the driven seed removed
+  double drive_energy = 0;          // J, change of the potential energy by those cuts (the knife's work)
   CrackPath::Tip tip_start, tip;    // crack tip at the start and at the end
   double tip_speed = 0;             // m/s, last fitted speed of λx × reference tip x over output.speed_window
   double energy_start = 0, energy_end = 0;  // J, kinetic + potential

@@ -38,6 +38,10 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   r.cutoff = s.choice("law.cutoff", r.cutoff, cutoff_law_names());
   r.angle = s.choice("law.angle", r.angle, angle_law_names());
   r.three_body_weight = s.choice("law.three_body_weight", r.three_body_weight, three_body_weight_names());
+  r.three_body_residual = s.non_negative("law.three_body_residual", 0.0);
+  if (!(r.three_body_residual < 1))
+    throw UsageError(s.name() + ": law.three_body_residual must lie in [0, 1) (the fraction of the far-field three-body "
+                     "energy a failed pair keeps)");
   r.short_width = s.positive("law.short_width", 0.1 * d);
   r.cutoff_length = s.positive("law.cutoff_length", 3.5 * d);
   r.cutoff_width = s.positive("law.cutoff_width", 0.05 * d);
@@ -92,6 +96,11 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
 
   r.seed_length = s.non_negative("crack.seed_length", 0.0);
   r.tip_kick = s.non_negative("crack.tip_kick", 0.0);
+  r.drive_speed = s.non_negative("crack.drive_speed", 0.0);
+  r.drive_length = s.non_negative("crack.drive_length", 0.0);
+  if ((r.drive_speed > 0) != (r.drive_length > 0))
+    throw UsageError(s.name() + ": crack.drive_speed and crack.drive_length go together (both positive: the driven "
+                     "seed; both 0: off)");
 
   r.pulse_kind = s.choice("pulse.kind", r.pulse_kind, {"longitudinal", "shear"});
   r.pulse_direction = s.choice("pulse.direction", r.pulse_direction, {"x", "y"});

@@ -28,6 +28,7 @@ struct RubberScene {
   // [law]
   std::string pair = "marder", cutoff = "fermi", angle = "marder";
   std::string three_body_weight = "pair";  // pair | all_bonds (bond_law.hpp)
+  double three_body_residual = 0;  // κ in [0, 1): 0, the paper's law (three_body_residual.hpp)
   double short_width = 0, cutoff_length = 0, cutoff_width = 0;  // m
   // [physics] and their parameters
   bool damping = false;
@@ -48,6 +49,7 @@ struct RubberScene {
   bool periodic_x = false, periodic_y = false;
   // [crack]
   double seed_length = 0, tip_kick = 0;  // m, m/s
+  double drive_speed = 0, drive_length = 0;  // m/s (lab), m (reference): the driven seed (crack_drive.hpp); 0: off
   // [pulse]
   std::string pulse_kind = "longitudinal", pulse_direction = "x";
   double pulse_amplitude = 0, pulse_width = 0, pulse_position = 0.5;  // m, m, fraction
