@@ -27,6 +27,8 @@ using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
 using test::deformed;
+using test::fd_error;
+using test::max_abs;
 using test::natural_law;
 
 std::unique_ptr<Model> make_model(const BondLaw& law, std::int64_t nx, std::int64_t ny, bool rows_x, double notch,
@@ -66,11 +68,6 @@ Matrix2d random_F(frac::Rng& rng, double lo, double hi) {
          rot(rng.uniform(0, 2 * std::numbers::pi)).transpose();
 }
 
-double max_abs(const std::vector<double>& v) {
-  double m = 0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
 
 // ------------------------------------------------------------------------------------------ evaluators
 TEST(RubberLaw, PairBranchesJoinAndDerivativesMatch) {
@@ -203,23 +200,7 @@ TEST(RubberContinuum, ReferenceLatticeIsStressFreeWithZeroEnergy) {
 // ------------------------------------------------------------------------------------------ gradients
 // Random configurations around the stretched state (1.2, 3) with bonds in all three branches of f and
 // across the Fermi cut-off (u_c = 2.75, width 0.05): central differences of the energy agree with the
-// forces within 1e-6 of the largest force.
-double fd_error(Model& model, std::vector<double> q) {
-  std::vector<double> f(q.size());
-  model.forces(q, f);
-  const double eps = 1e-6;
-  double worst = 0;
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const double q0 = q[k];
-    q[k] = q0 + eps;
-    const double up = model.potential_energy(q).total();
-    q[k] = q0 - eps;
-    const double um = model.potential_energy(q).total();
-    q[k] = q0;
-    worst = std::max(worst, std::abs(-(up - um) / (2 * eps) - f[k]));
-  }
-  return worst / max_abs(f);
-}
+// forces within 1e-6 of the largest force (test::fd_error).
 
 // Perturbs q until no intact bond sits within `gap` of a kink of f (Δ + u_s, u_c).
 std::vector<double> random_near(const Model& model, const Matrix2d& F, double amplitude, frac::Rng& rng, double gap,

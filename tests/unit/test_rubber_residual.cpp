@@ -22,6 +22,8 @@ namespace {
 
 using namespace frac::rubber;
 using Eigen::Matrix2d;
+using test::fd_error;
+using test::max_abs;
 
 std::unique_ptr<Model> make(const BondLaw& law, double kappa, const Matrix2d& F, double notch = 2.5) {
   frac::mesh::TriangularLatticeOptions o;
@@ -36,28 +38,7 @@ std::unique_ptr<Model> make(const BondLaw& law, double kappa, const Matrix2d& F,
   return std::make_unique<Model>(std::move(L), mo);
 }
 
-double max_abs(const std::vector<double>& v) {
-  double m = 0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
 
-double fd_error(Model& model, std::vector<double> q) {
-  std::vector<double> f(q.size());
-  model.forces(q, f);
-  const double eps = 1e-6;
-  double worst = 0;
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const double q0 = q[k];
-    q[k] = q0 + eps;
-    const double up = model.potential_energy(q).total();
-    q[k] = q0 - eps;
-    const double um = model.potential_energy(q).total();
-    q[k] = q0;
-    worst = std::max(worst, std::abs(-(up - um) / (2 * eps) - f[k]));
-  }
-  return worst / max_abs(f);
-}
 
 const Matrix2d kF{{1.2, 0}, {0, 2.2}};  // far-field bonds 2.3Δ; u_c = 2.75Δ, width 0.05Δ
 
