@@ -89,7 +89,7 @@ inline BeamResponse beam_response(double dx, double dy, double e0x, double e0y, 
 }
 
 // beam_response where it needs neither the library's atan2 nor a wrap (Δψ within ±π/8, Θ within
-// (−π, π]): branch-free, so a loop over beams vectorises. Returns false, r unspecified, elsewhere;
+// (−π, π]): branch-free and without library calls, for the beam loop. Returns false, r unspecified, elsewhere;
 // where it returns true, r is beam_response's, bit for bit.
 inline bool beam_response_near_reference(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j,
                                          double l0, const BeamStiffness& k, BeamResponse& r) {

@@ -57,7 +57,7 @@ class Beams {
     double fx, fy, torque_i, torque_j;
   };
   mutable std::vector<BeamForce> force_;  // per active beam, filled in parallel, summed in order
-  mutable std::vector<std::uint8_t> far_;  // per active beam: rotated beyond the vectorised formula
+  mutable std::vector<std::uint8_t> far_;  // per active beam: beyond beam_response_near_reference
   struct Verdict {
     int mode;       // breaking_mode's
     double energy;  // elastic energy, J, when it breaks
