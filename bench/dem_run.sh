@@ -11,7 +11,7 @@ threads=${THREADS:-"1 2"}
 out=bench/out
 mkdir -p "$out"
 # shellcheck source=bench/lib.sh
-source "$(dirname "$0")/lib.sh"  # median_wall
+source "$(dirname "$0")/lib.sh"  # median_wall, time_once, median_of
 require_gnu_time
 scenes=data/scenes
 
