@@ -6,8 +6,16 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 namespace frac::dynamics {
+
+namespace {
+// The step loops are element by element (the same bits on any number of threads) and light: threads
+// pay off from about a thousand coordinates. (rubber-run runs its own thread pool and keeps OpenMP to one
+// thread, so these loops stay serial there.)
+constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
+}  // namespace
 
 IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option) {
   if (name == "gear5") return IntegratorKind::gear5;
@@ -237,6 +245,7 @@ void Gear5::step(System& system) {
   const double* r5 = r_[5].data();
   const double inv_dt = 1.0 / dt_;
   // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders.
+#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
   for (std::size_t i = 0; i < n_; ++i) {
     r0[i] += r1[i] + r2[i] + r3[i] + r4[i] + r5[i];
     r1[i] += 2 * r2[i] + 3 * r3[i] + 4 * r4[i] + 5 * r5[i];
@@ -251,6 +260,7 @@ void Gear5::step(System& system) {
   // Corrector.
   const double half_dt2 = 0.5 * dt_ * dt_;
   double* r5w = r_[5].data();
+#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
   for (std::size_t i = 0; i < n_; ++i) {
     const double delta = half_dt2 * a_[i] - r2[i];
     r0[i] += kGearC[0] * delta;
@@ -283,6 +293,7 @@ void VelocityVerlet::start(System& system, double t0, double dt, std::span<const
 
 void VelocityVerlet::step(System& system) {
   const double h = 0.5 * dt_;
+#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
   for (std::size_t i = 0; i < n_; ++i) {
     v_[i] += h * a_[i];        // half kick
     q_[i] += dt_ * v_[i];      // drift
@@ -291,6 +302,7 @@ void VelocityVerlet::step(System& system) {
   t_ += dt_;
   system.prescribe(t_, q_, v_est_, a_);
   system.accelerations(t_, q_, v_est_, a_);
+#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
   for (std::size_t i = 0; i < n_; ++i) v_[i] += h * a_[i];  // half kick
   const auto fixed = system.prescribed();
   if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
