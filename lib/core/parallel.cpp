@@ -4,10 +4,6 @@
 
 namespace frac {
 
-int set_threads(int requested) {
-  const int threads = requested > 0 ? requested : omp_get_num_procs();
-  omp_set_num_threads(threads);
-  return threads;
-}
+void set_threads(int requested) { omp_set_num_threads(requested > 0 ? requested : omp_get_num_procs()); }
 
 }  // namespace frac

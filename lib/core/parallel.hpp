@@ -8,7 +8,7 @@ namespace frac {
 
 inline constexpr std::size_t kMinParallelItems = 256;
 
-// Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0. Returns it.
-int set_threads(int requested);
+// Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0.
+void set_threads(int requested);
 
 }  // namespace frac
