@@ -28,6 +28,25 @@ Beams::Beams(const mesh::CellMesh& mesh, const Material& m) : n_(mesh.cells()) {
     k_[b] = beam_stiffness(l0_[b], mesh.beam_section[b], m.thickness, m.beam_modulus, m.shear_ratio);
     active_[b] = static_cast<std::int32_t>(b);
   }
+  index_cells();
+  force_.resize(nb);
+}
+
+void Beams::index_cells() {
+  cell_start_.assign(n_ + 1, 0);
+  for (const std::int32_t b : active_) {
+    ++cell_start_[static_cast<std::size_t>(i_[static_cast<std::size_t>(b)]) + 1];
+    ++cell_start_[static_cast<std::size_t>(j_[static_cast<std::size_t>(b)]) + 1];
+  }
+  for (std::size_t c = 0; c < n_; ++c) cell_start_[c + 1] += cell_start_[c];
+  beams_of_.resize(2 * active_.size());
+  cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  for (const std::int32_t b : active_) {
+    const auto i = static_cast<std::size_t>(i_[static_cast<std::size_t>(b)]);
+    const auto j = static_cast<std::size_t>(j_[static_cast<std::size_t>(b)]);
+    beams_of_[static_cast<std::size_t>(cursor_[i]++)] = {b, 0, 1.0};
+    beams_of_[static_cast<std::size_t>(cursor_[j]++)] = {b, 1, -1.0};
+  }
 }
 
 BeamResponse Beams::response(std::size_t b, std::span<const double> q) const {
@@ -46,14 +65,11 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const {
   double* fy = fx + n_;
   double* tz = fy + n_;
   const std::size_t count = active_.size();
-  if (force_.size() < count) {
-    force_.resize(count);
-    far_.resize(count);
-  }
-  // Forces in parallel (each beam its own slot), then summed in beam order: the same bits whatever the
-  // thread count. First the branch-free formula of a beam near its reference orientation (no library
-  // call, no unpredictable branch; GCC vectorises it where the target has gathers, e.g. -mavx2); then the
-  // beams it does not cover (rotated by more than π/8), one at a time.
+  if (far_.size() < count) far_.resize(count);
+  // Forces in parallel (each beam its own slot), then each cell gathers its intact beams in beam order:
+  // the same bits whatever the thread count. First the branch-free formula of a beam near its reference
+  // orientation (no library call, no unpredictable branch; GCC vectorises it where the target has
+  // gathers, e.g. -mavx2); then the beams it does not cover (rotated by more than π/8), one at a time.
   const std::int32_t* active = active_.data();
   const std::int32_t *cell_i = i_.data(), *cell_j = j_.data();
   const double *e0x = e0x_.data(), *e0y = e0y_.data(), *l0 = l0_.data();
@@ -67,25 +83,33 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const {
     BeamResponse r;
     const bool near =
         beam_response_near_reference(x[j] - x[i], y[j] - y[i], e0x[b], e0y[b], phi[i], phi[j], l0[b], stiffness[b], r);
-    out[k] = {r.fx, r.fy, r.torque_i, r.torque_j};
+    out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
     far[k] = !near;
   }
   for (std::size_t k = 0; k < count; ++k) {
     if (far[k]) {
-      const BeamResponse r = response(static_cast<std::size_t>(active_[k]), q);
-      out[k] = {r.fx, r.fy, r.torque_i, r.torque_j};
+      const auto b = static_cast<std::size_t>(active[k]);
+      const BeamResponse r = response(b, q);
+      out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
     }
   }
-  for (std::size_t k = 0; k < count; ++k) {
-    const BeamForce& r = force_[k];
-    const auto b = static_cast<std::size_t>(active_[k]);
-    const auto i = static_cast<std::size_t>(i_[b]), j = static_cast<std::size_t>(j_[b]);
-    fx[i] += r.fx;
-    fy[i] += r.fy;
-    fx[j] -= r.fx;
-    fy[j] -= r.fy;
-    tz[i] += r.torque_i;
-    tz[j] += r.torque_j;
+  // On cell i the beam adds (F, τ_i), on cell j (−F, τ_j) (as + (−1)·F: the same bits as − F), in beam
+  // order, as a loop over the beams would.
+  const std::int32_t* start = cell_start_.data();
+  const CellBeam* beams_of = beams_of_.data();
+#pragma omp parallel for schedule(static) if (n_ > kMinParallelItems)
+  for (std::size_t c = 0; c < n_; ++c) {
+    double sx = fx[c], sy = fy[c], st = tz[c];
+    for (auto s = start[c]; s < start[c + 1]; ++s) {
+      const CellBeam cb = beams_of[s];
+      const BeamForce& r = out[static_cast<std::size_t>(cb.beam)];
+      sx += cb.sign * r.fx;
+      sy += cb.sign * r.fy;
+      st += r.torque[cb.end];
+    }
+    fx[c] = sx;
+    fy[c] = sy;
+    tz[c] = st;
   }
 }
 
@@ -125,18 +149,23 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
       broken.push_back({static_cast<std::int64_t>(b), verdict[k].mode, verdict[k].energy});
     }
   }
-  active_.resize(kept);
+  if (kept != count) {
+    active_.resize(kept);
+    index_cells();
+  }
 }
 
 void Beams::remove(std::size_t b) {
   if (!intact_[b]) return;
   intact_[b] = 0;
   active_.erase(std::find(active_.begin(), active_.end(), static_cast<std::int32_t>(b)));
+  index_cells();
 }
 
 void Beams::remove_all() {
   std::fill(intact_.begin(), intact_.end(), std::uint8_t{0});
   active_.clear();
+  index_cells();
 }
 
 }  // namespace frac::dem

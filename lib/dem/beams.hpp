@@ -54,9 +54,23 @@ class Beams {
   std::vector<std::uint8_t> intact_;
   std::vector<std::int32_t> active_;
   struct BeamForce {
-    double fx, fy, torque_i, torque_j;
+    double fx, fy;
+    double torque[2];  // on cell i, on cell j
   };
-  mutable std::vector<BeamForce> force_;  // per active beam, filled in parallel, summed in order
+  mutable std::vector<BeamForce> force_;  // per beam (indexed by beam), filled in parallel for the intact ones
+  // The intact beams of each cell in beam order (CSR: beams_of_[cell_start_[c] .. cell_start_[c+1])), with
+  // which end the cell is (0: i, 1: j) and the sign of the force on it (+1, −1): each cell gathers its
+  // beams' forces in the order a loop over the beams would add them (the same bits), so cells can be
+  // summed in parallel. Rebuilt when beams break.
+  struct CellBeam {
+    std::int32_t beam;
+    std::int32_t end;
+    double sign;
+  };
+  void index_cells();
+  std::vector<std::int32_t> cell_start_;
+  std::vector<CellBeam> beams_of_;
+  std::vector<std::int32_t> cursor_;  // scratch of index_cells
   mutable std::vector<std::uint8_t> far_;  // per active beam: beyond beam_response_near_reference
   struct Verdict {
     int mode;       // breaking_mode's

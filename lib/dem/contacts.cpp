@@ -7,16 +7,18 @@
 
 namespace frac::dem {
 
-void ContactList::clear() {
-  i.clear();
-  j.clear();
-  rx.clear();
-  ry.clear();
-  nx.clear();
-  ny.clear();
-  area.clear();
-  inv_lc.clear();
-  fn.clear();
+void ContactList::clear() { resize(0); }
+
+void ContactList::resize(std::size_t count) {
+  i.resize(count);
+  j.resize(count);
+  rx.resize(count);
+  ry.resize(count);
+  nx.resize(count);
+  ny.resize(count);
+  area.resize(count);
+  inv_lc.resize(count);
+  fn.resize(count);
   candidate_pairs = enclosed = multi_crossing = 0;
 }
 
@@ -26,7 +28,17 @@ ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
       world_(mesh.vertex.size()),
       cell_of_(bodies.n),
       sorted_(bodies.n),
-      skin_(0.2 * bodies.length_scale) {}
+      skin_(0.2 * bodies.length_scale) {
+  inv_diameter_.resize(bodies.n);
+  for (std::size_t k = 0; k < bodies.n; ++k) inv_diameter_[k] = 1.0 / bodies.diameter[k];
+  // The reach of every edge of every cell (body frame: a rigid motion does not change it).
+  edge_reach_.resize(mesh.vertex.size());
+  for (std::size_t k = 0; k < bodies.n; ++k) {
+    const auto poly = mesh.polygon(k);
+    const auto offset = static_cast<std::size_t>(mesh.vertex_offset[k]);
+    for (std::size_t e = 0; e < poly.size(); ++e) edge_reach_[offset + e] = geometry::edge_reach(poly, e);
+  }
+}
 
 bool ContactSearch::stale(std::span<const double> q) const {
   if (ref_.size() != q.size()) return true;
@@ -101,8 +113,11 @@ void ContactSearch::rebuild(std::span<const double> q) {
     for (std::size_t c = gx * gy; c > 0; --c) start[c] = start[c - 1];
     start[0] = 0;
   }
+  // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (static
+  // schedule, in thread order) into their own buffers, joined in thread order: the same list whatever the
+  // thread count.
   const auto& r = bodies_->bound_radius;
-  for (std::size_t i = 0; i < n; ++i) {
+  auto pairs_of = [&](std::size_t i, std::vector<NeighbourPair>& out) {
     const auto ci = static_cast<std::size_t>(cell_of_[i]);
     const std::size_t cx = ci % gx, cy = ci / gx;
     for (std::size_t ny = (cy > 0 ? cy - 1 : 0); ny <= std::min(gy - 1, cy + 1); ++ny) {
@@ -115,25 +130,48 @@ void ContactSearch::rebuild(std::span<const double> q) {
           const double reach = r[i] + r[j] + skin_;
           if (dx * dx + dy * dy >= reach * reach) continue;
           const Vec2 dij(dx, dy);
-          neighbours_.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
-                                 static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
-                                 static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false});
+          out.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
+                         static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
+                         static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false});
         }
       }
     }
+  };
+  if (n <= kMinParallelItems) {
+    for (std::size_t i = 0; i < n; ++i) pairs_of(i, neighbours_);
+    return;
+  }
+  const auto most = static_cast<std::size_t>(max_threads());
+  if (thread_pairs_.size() < most) thread_pairs_.resize(most);
+  int teams = 1;
+#pragma omp parallel
+  {
+    const auto t = static_cast<std::size_t>(thread_index());
+    const auto nt = static_cast<std::size_t>(thread_count());
+#pragma omp single
+    teams = static_cast<int>(nt);
+    auto& buf = thread_pairs_[t];
+    buf.clear();
+    for (std::size_t i = n * t / nt; i < n * (t + 1) / nt; ++i) pairs_of(i, buf);
+  }
+  for (int t = 0; t < teams; ++t) {
+    const auto& buf = thread_pairs_[static_cast<std::size_t>(t)];
+    neighbours_.insert(neighbours_.end(), buf.begin(), buf.end());
   }
 }
 
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
-  out.clear();
   const std::size_t n = bodies_->n;
-  if (n < 2) return;
+  if (n < 2) {
+    out.clear();
+    return;
+  }
   world_vertices(q);
   if (stale(q)) rebuild(q);
   const double* x = q.data();
   const double* y = x + n;
   const auto& r = bodies_->bound_radius;
-  const auto& d = bodies_->diameter;
+  const double* inv_d = inv_diameter_.data();
   const double g = bodies_->length_scale;
   // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep,
   // so the order of the tests changes no result, only the time: a pair that overlapped at the last
@@ -147,7 +185,8 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     geometry_.resize(pairs + pairs / 4);
     pair_state_.resize(pairs + pairs / 4);
   }
-#pragma omp parallel for schedule(dynamic, 64) if (pairs > kMinParallelItems)
+  std::int64_t candidates = 0, overlapping = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : candidates, overlapping) if (pairs > kMinParallelItems)
   for (std::size_t p = 0; p < pairs; ++p) {
     auto& pair = neighbours_[p];
     const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
@@ -159,6 +198,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
       continue;
     }
     pair_state_[p] = PairState::candidate;
+    ++candidates;
     const auto pi = world_polygon(i), pj = world_polygon(j);
     if (!pair.overlapping) {
       if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
@@ -173,31 +213,39 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
       }
     }
     const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
-    const auto geo = geometry::convex_overlap(pi, pj, ci, cj, g, static_cast<std::size_t>(pair.edge_j));
+    geometry::OverlapHint hint;
+    hint.edge_i = static_cast<std::size_t>(pair.edge_i);
+    hint.edge_j = static_cast<std::size_t>(pair.edge_j);
+    hint.reach_i = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[i]) + hint.edge_i];
+    hint.reach_j = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[j]) + hint.edge_j];
+    const auto geo = geometry::convex_overlap(pi, pj, ci, cj, g, hint);
     pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
     if (pair.overlapping) {
       geometry_[p] = geo;
       pair_state_[p] = PairState::overlapping;
+      ++overlapping;
     }
   }
+  // The list in pair order: the same whatever the thread count.
+  out.resize(static_cast<std::size_t>(overlapping));
+  out.candidate_pairs = candidates;
+  std::size_t k = 0;
   for (std::size_t p = 0; p < pairs; ++p) {
-    if (pair_state_[p] == PairState::apart) continue;
-    ++out.candidate_pairs;
     if (pair_state_[p] != PairState::overlapping) continue;
     const auto& geo = geometry_[p];
     const auto& pair = neighbours_[p];
-    const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
     if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
     if (geo.distinct_crossings > 2) ++out.multi_crossing;
-    out.i.push_back(static_cast<std::int32_t>(i));
-    out.j.push_back(static_cast<std::int32_t>(j));
-    out.rx.push_back(geo.point.x());
-    out.ry.push_back(geo.point.y());
-    out.nx.push_back(geo.normal.x());
-    out.ny.push_back(geo.normal.y());
-    out.area.push_back(geo.area);
-    out.inv_lc.push_back(0.5 * (1.0 / d[i] + 1.0 / d[j]));
-    out.fn.push_back(0.0);
+    out.i[k] = pair.i;
+    out.j[k] = pair.j;
+    out.rx[k] = geo.point.x();
+    out.ry[k] = geo.point.y();
+    out.nx[k] = geo.normal.x();
+    out.ny[k] = geo.normal.y();
+    out.area[k] = geo.area;
+    out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
+    out.fn[k] = 0.0;
+    ++k;
   }
 }
 

@@ -41,6 +41,8 @@ struct ContactList {
   std::vector<PairForce> pair_force;  // scratch of the force terms (one slot per contact, filled in parallel)
   std::size_t size() const { return i.size(); }
   void clear();
+  // Makes room for `count` contacts (entries not yet set) and zeroes the diagnostics.
+  void resize(std::size_t count);
   // Diagnostics of the last search.
   std::int64_t candidate_pairs = 0;  // pairs whose bounding circles overlap
   std::int64_t enclosed = 0;         // overlaps without a contact line (one polygon inside another)
@@ -65,6 +67,8 @@ class ContactSearch {
   const mesh::CellMesh* mesh_ = nullptr;
   const Bodies* bodies_ = nullptr;
   std::vector<Vec2> world_;               // vertices of every cell in world coordinates
+  std::vector<double> inv_diameter_;      // 1/r of every cell, m^-1
+  std::vector<double> edge_reach_;        // geometry::edge_reach of every edge (indexed like the vertices), m
   std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
   std::vector<std::int32_t> cell_of_;
   std::vector<std::int32_t> sorted_;
@@ -81,6 +85,7 @@ class ContactSearch {
     bool overlapping;             // the pair overlapped at the last search
   };
   std::vector<NeighbourPair> neighbours_;
+  std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)

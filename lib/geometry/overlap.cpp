@@ -1,8 +1,8 @@
 #include "geometry/overlap.hpp"
 
-#include <limits>
-
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -13,72 +13,78 @@ namespace frac::geometry {
 namespace {
 
 // The clipper's working polygon: vertex k and the label of its edge k -> k+1, which names the
-// original edge the edge lies on: 0..n-1 an edge of P_i, n + b edge b of P_j.
+// original edge the edge lies on: 0..n-1 an edge of P_i, n + b edge b of P_j. Room for twice the
+// largest overlap polygon (a clip step at most doubles the count; the size is checked after each step)
+// and for a copy of the first vertex after the last.
+constexpr std::size_t kClipCapacity = 2 * kMaxOverlapVertices + 1;
 struct LabelledPolygon {
-  std::array<Vec2, kMaxOverlapVertices> v;
-  std::array<int, kMaxOverlapVertices> label;
+  std::array<Vec2, kClipCapacity> v;
+  std::array<int, kClipCapacity> label;
   std::size_t size = 0;
-
-  void push(const Vec2& p, int edge) {
-    // Cannot happen for convex input within the vertex limit: each clip adds at most one vertex
-    // except where round-off makes vertices alternate in and out along the clip line.
-    if (size == kMaxOverlapVertices) throw RuntimeError("convex_overlap: overlap polygon exceeds its capacity");
-    v[size] = p;
-    label[size] = edge;
-    ++size;
-  }
 };
 
 // One Sutherland-Hodgman step: keep the part of `in` on the left of the directed line a -> b
 // (closed half-plane, no tolerance). The new edge along the line gets `line_label`; pieces of old
 // edges keep theirs. An inside vertex exactly on the line is not repeated as a crossing.
 // Returns false, leaving `out` untouched, when every vertex of `in` is on the left or on the line:
-// the step would copy `in` unchanged.
-bool clip_step(const LabelledPolygon& in, const Vec2& a, const Vec2& b, int line_label, LabelledPolygon& out) {
+// the step would copy `in` unchanged. (Sets the copy of the first vertex after the last in `in`.)
+bool clip_step(LabelledPolygon& in, const Vec2& a, const Vec2& b, int line_label, LabelledPolygon& out) {
   const Vec2 d = b - a;
   const std::size_t n = in.size;
-  std::array<double, kMaxOverlapVertices> side;  // cross(d, p - a): > 0 on the left
+  std::array<double, kClipCapacity> side;  // cross(d, p - a): > 0 on the left
   bool all_inside = true;
   for (std::size_t k = 0; k < n; ++k) {
     side[k] = cross(d, in.v[k] - a);
-    all_inside = all_inside && side[k] >= 0.0;
+    all_inside &= side[k] >= 0.0;  // NaN counts as outside
   }
   if (all_inside) return false;
-  out.size = 0;
+  side[n] = side[0];
+  in.v[n] = in.v[0];
+  std::size_t m = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t k1 = k + 1 == n ? 0 : k + 1;
-    const double sp = side[k], sq = side[k1];
+    const double sp = side[k], sq = side[k + 1];
     const Vec2& p = in.v[k];
-    const Vec2& q = in.v[k1];
     if (sp >= 0.0) {
-      out.push(p, in.label[k]);
+      out.v[m] = p;
+      out.label[m++] = in.label[k];
       if (sq < 0.0) {
         // Leaving: from here the boundary of the result runs along the clip line.
         if (sp > 0.0) {
-          out.push(p + (sp / (sp - sq)) * (q - p), line_label);
+          out.v[m] = p + (sp / (sp - sq)) * (in.v[k + 1] - p);
+          out.label[m++] = line_label;
         } else {
-          out.label[out.size - 1] = line_label;
+          out.label[m - 1] = line_label;
         }
       }
     } else if (sq > 0.0) {
       // Entering: the rest of edge pq is a piece of the old edge. (sq == 0: q itself comes next.)
-      out.push(p + (sp / (sp - sq)) * (q - p), in.label[k]);
+      out.v[m] = p + (sp / (sp - sq)) * (in.v[k + 1] - p);
+      out.label[m++] = in.label[k];
     }
   }
+  // Cannot happen for convex input within the vertex limit: each clip adds at most one vertex
+  // except where round-off makes vertices alternate in and out along the clip line.
+  if (m > kMaxOverlapVertices) throw RuntimeError("convex_overlap: overlap polygon exceeds its capacity");
+  out.size = m;
   return true;
 }
 
 // The edges of a polygon as the shared-edge test needs them: d_c = p_{c+1} − p_c and tol²·|d_c|².
+// Filled on first use: with a hint, most pairs need none.
 struct EdgeTable {
-  std::array<Vec2, kMaxContactPolygonVertices> d;
-  std::array<double, kMaxContactPolygonVertices> limit;
+  std::array<double, kMaxContactPolygonVertices> dx, dy, limit;
   std::span<const Vec2> p;
-  EdgeTable(std::span<const Vec2> polygon, double tol2) : p(polygon) {
+  bool filled = false;
+  void fill(std::span<const Vec2> polygon, double tol2) {
+    p = polygon;
     const std::size_t m = p.size();
     for (std::size_t c = 0; c < m; ++c) {
-      d[c] = p[c + 1 == m ? 0 : c + 1] - p[c];
-      limit[c] = tol2 * d[c].squaredNorm();
+      const Vec2 d = p[c + 1 == m ? 0 : c + 1] - p[c];
+      dx[c] = d.x();
+      dy[c] = d.y();
+      limit[c] = tol2 * d.squaredNorm();
     }
+    filled = true;
   }
 };
 
@@ -92,12 +98,53 @@ bool shared_edge(const Vec2& u, const Vec2& v, const EdgeTable& other, double to
   const std::size_t m = other.p.size();
   bool shared = false;
   for (std::size_t c = 0; c < m; ++c) {
-    const Vec2& d = other.d[c];
+    const Vec2 d(other.dx[c], other.dy[c]);
     const Vec2& a = other.p[c];
     const double su = cross(d, u - a), sv = cross(d, v - a);
     shared |= (e.dot(d) > 0.0) & (su * su <= other.limit[c]) & (sv * sv <= other.limit[c]);
   }
   return shared;
+}
+
+// The three edges c−1, c, c+1 of a polygon (`p` in the local frame) as the shared-edge test needs them.
+// When the overlap lies within the reach of edge c (edge_reach), no other edge line comes within tol of
+// it, and the test over these three is the test over all.
+struct NearEdges {
+  std::array<Vec2, 3> a, d;
+  std::array<double, 3> limit;
+  bool filled = false;
+  void fill(std::span<const Vec2> p, std::size_t c, double tol2) {
+    const std::size_t m = p.size();
+    const std::size_t lines[3] = {c == 0 ? m - 1 : c - 1, c, c + 1 == m ? 0 : c + 1};
+    for (std::size_t s = 0; s < 3; ++s) {
+      const std::size_t l = lines[s];
+      a[s] = p[l];
+      d[s] = p[l + 1 == m ? 0 : l + 1] - a[s];
+      limit[s] = tol2 * d[s].squaredNorm();
+    }
+    filled = true;
+  }
+};
+
+bool shared_edge(const Vec2& u, const Vec2& v, const NearEdges& other, double tol2) {
+  const Vec2 e = v - u;
+  if (e.squaredNorm() <= tol2) return true;
+  bool shared = false;
+  for (std::size_t s = 0; s < 3; ++s) {
+    const Vec2& d = other.d[s];
+    const double su = cross(d, u - other.a[s]), sv = cross(d, v - other.a[s]);
+    shared |= (e.dot(d) > 0.0) & (su * su <= other.limit[s]) & (sv * sv <= other.limit[s]);
+  }
+  return shared;
+}
+
+// Whether every vertex lies within `reach` of the midpoint of edge c of `p`.
+bool within_reach(const Vec2* v, std::size_t count, std::span<const Vec2> p, std::size_t c, double reach) {
+  const Vec2 mid = 0.5 * (p[c] + p[c + 1 == p.size() ? 0 : c + 1]);
+  const double r2 = reach * reach;
+  bool inside = true;
+  for (std::size_t k = 0; k < count; ++k) inside &= (v[k] - mid).squaredNorm() <= r2;
+  return inside;
 }
 
 // n perpendicular to the contact line (p2 - p1 != 0), oriented from i toward j.
@@ -117,7 +164,8 @@ Vec2 centre_normal(const Vec2& dc) {
 }
 
 ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
-                             double g, std::size_t first_clip_edge, OverlapPolygon* overlap) {
+                             double g, std::size_t first_clip_edge, const OverlapHint* hint,
+                             OverlapPolygon* overlap) {
   const std::size_t n = pi.size(), m = pj.size();
   if (n > kMaxContactPolygonVertices || m > kMaxContactPolygonVertices) {
     throw InputError("convex_overlap: polygon with " + std::to_string(n > m ? n : m) + " vertices (at most " +
@@ -134,23 +182,39 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   // result does not depend on the distance from the origin.
   const Vec2 o = pi[0];
   std::array<Vec2, kMaxContactPolygonVertices> li, lj;
-  for (std::size_t k = 0; k < n; ++k) li[k] = pi[k] - o;
-  for (std::size_t k = 0; k < m; ++k) lj[k] = pj[k] - o;
-  const std::span<const Vec2> si(li.data(), n), sj(lj.data(), m);
-
   LabelledPolygon buf_a, buf_b;
   LabelledPolygon* cur = &buf_a;
   LabelledPolygon* next = &buf_b;
-  for (std::size_t k = 0; k < n; ++k) cur->push(li[k], static_cast<int>(k));
+  for (std::size_t k = 0; k < n; ++k) {
+    li[k] = pi[k] - o;
+    cur->v[k] = li[k];
+    cur->label[k] = static_cast<int>(k);
+  }
+  cur->size = n;
+  for (std::size_t k = 0; k < m; ++k) lj[k] = pj[k] - o;
+  const std::span<const Vec2> si(li.data(), n), sj(lj.data(), m);
+
   // Clip by P_j's edges starting at `first_clip_edge` (the edge facing P_i cuts P_i down to a sliver
   // first, so the later steps handle few vertices); the intersection does not depend on the order.
-  const std::size_t first = first_clip_edge < m ? first_clip_edge : 0;
-  for (std::size_t step = 0; step < m && cur->size > 0; ++step) {
+  const bool hinted_j = hint && hint->edge_j < m && hint->reach_j > 0.0;
+  const std::size_t first = hinted_j ? hint->edge_j : first_clip_edge < m ? first_clip_edge : 0;
+  auto clip_by = [&](std::size_t step) {
     const std::size_t b = first + step < m ? first + step : first + step - m;
     const Vec2& a0 = lj[b];
     const Vec2& a1 = lj[b + 1 == m ? 0 : b + 1];
-    if (a0 == a1) continue;  // a repeated vertex bounds nothing
+    if (a0 == a1) return;  // a repeated vertex bounds nothing
     if (clip_step(*cur, a0, a1, static_cast<int>(n + b), *next)) std::swap(cur, next);
+  };
+  clip_by(0);
+  // With a hint: when what is left of P_i lies within the reach of P_j's facing edge, no edge line of
+  // P_j but the two next to it can cut it (nor come within tol of the overlap): the steps of the
+  // others would keep everything, and are left out.
+  const bool near_j = hinted_j && cur->size > 0 && within_reach(cur->v.data(), cur->size, sj, first, hint->reach_j);
+  if (near_j) {
+    clip_by(1);
+    if (cur->size > 0 && m > 2) clip_by(m - 1);
+  } else {
+    for (std::size_t step = 1; step < m && cur->size > 0; ++step) clip_by(step);
   }
   const LabelledPolygon& P = *cur;
   const std::size_t K = P.size;
@@ -173,15 +237,28 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   std::array<signed char, kMaxOverlapVertices> shared_state;
   shared_state.fill(-1);
   const double tol2 = eps_len * eps_len;
-  const EdgeTable edges_i(si, tol2), edges_j(sj, tol2);
+  EdgeTable edges_i, edges_j;
+  NearEdges near_edges_i, near_edges_j;
+  const bool near_i = hint && hint->edge_i < n && hint->reach_i > 0.0 &&
+                      within_reach(P.v.data(), K, si, hint->edge_i, hint->reach_i);
   auto shared = [&](std::size_t e) {
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
       const Vec2& v = P.v[e + 1 == K ? 0 : e + 1];
-      shared_state[e] = shared_edge(u, v, owner_j(e) ? edges_i : edges_j, tol2) ? 1 : 0;
+      if (owner_j(e) ? near_i : near_j) {
+        NearEdges& other = owner_j(e) ? near_edges_i : near_edges_j;
+        if (!other.filled) other.fill(owner_j(e) ? si : sj, owner_j(e) ? hint->edge_i : first, tol2);
+        shared_state[e] = shared_edge(u, v, other, tol2) ? 1 : 0;
+      } else {
+        EdgeTable& other = owner_j(e) ? edges_i : edges_j;
+        if (!other.filled) other.fill(owner_j(e) ? si : sj, tol2);
+        shared_state[e] = shared_edge(u, v, other, tol2) ? 1 : 0;
+      }
     }
     return shared_state[e] == 1;
   };
+  // An index below 2K wrapped into [0, K): one subtraction instead of a division.
+  auto wrap = [K](std::size_t k) { return k >= K ? k - K : k; };
   std::array<Vec2, kMaxOverlapVertices> cross_pt;
   std::size_t count = 0;
   bool all_shared = false;
@@ -189,13 +266,13 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
     const std::size_t prev = k == 0 ? K - 1 : k - 1;
     if (owner_j(prev) == owner_j(k)) continue;
     std::size_t back = 0, fwd = 0;  // shared edges before and after vertex k
-    while (back < K && shared((k + K - 1 - back) % K)) ++back;
-    while (back + fwd < K && shared((k + fwd) % K)) ++fwd;
+    while (back < K && shared(wrap(k + K - 1 - back))) ++back;
+    while (back + fwd < K && shared(wrap(k + fwd))) ++fwd;
     if (back + fwd >= K) {
       all_shared = true;  // both boundaries coincide all around: identical polygons
       break;
     }
-    cross_pt[count++] = 0.5 * (P.v[(k + K - back) % K] + P.v[(k + fwd) % K]);
+    cross_pt[count++] = 0.5 * (P.v[wrap(k + K - back)] + P.v[wrap(k + fwd)]);
   }
   if (all_shared) count = 0;
   r.crossings = static_cast<int>(count);
@@ -251,12 +328,34 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
 
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, std::size_t first_clip_edge) {
-  return overlap_impl(pi, pj, ci, cj, length_scale, first_clip_edge, nullptr);
+  return overlap_impl(pi, pj, ci, cj, length_scale, first_clip_edge, nullptr, nullptr);
+}
+
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
+                               const Vec2& cj, double length_scale, const OverlapHint& hint) {
+  return overlap_impl(pi, pj, ci, cj, length_scale, hint.edge_j, &hint, nullptr);
+}
+
+double edge_reach(std::span<const Vec2> p, std::size_t edge) {
+  const std::size_t m = p.size();
+  if (edge >= m) return 0.0;
+  const Vec2 mid = 0.5 * (p[edge] + p[edge + 1 == m ? 0 : edge + 1]);
+  double reach = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < m; ++c) {
+    const std::size_t gap = c > edge ? c - edge : edge - c;
+    if (gap <= 1 || gap == m - 1) continue;  // the edge itself and its two neighbours
+    const Vec2 d = p[c + 1 == m ? 0 : c + 1] - p[c];
+    const double len = std::sqrt(d.squaredNorm());
+    if (!(len > 0.0)) continue;  // a repeated vertex bounds nothing
+    reach = std::min(reach, cross(d, mid - p[c]) / len);
+  }
+  // A margin far above round-off: a point within the reach is at least 1e-3 of the distance inside.
+  return reach > 0.0 ? (1.0 - 1e-3) * reach : 0.0;
 }
 
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap) {
-  return overlap_impl(pi, pj, ci, cj, length_scale, 0, &overlap);
+  return overlap_impl(pi, pj, ci, cj, length_scale, 0, nullptr, &overlap);
 }
 
 std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d) {

@@ -79,6 +79,23 @@ struct ContactGeometry {
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, std::size_t first_clip_edge = 0);
 
+// A faster path for cells of a mesh, with the same result bit for bit: the facing edges of P_i and P_j
+// (first vertex index; P_j is clipped by its facing edge first) and their reaches (edge_reach of the
+// polygons, which a rigid motion does not change; 0: no reach known). When the overlap lies within the
+// reach of a facing edge, the lines of that polygon's other edges are left out: they can neither cut it
+// nor come within eps_L of it.
+struct OverlapHint {
+  std::size_t edge_i = 0, edge_j = 0;
+  double reach_i = 0.0, reach_j = 0.0;  // m
+};
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
+                               const Vec2& cj, double length_scale, const OverlapHint& hint);
+
+// The reach of edge `edge` of the convex polygon p: a radius about the edge's midpoint within which every
+// point is inside the half-plane of every edge of p other than this edge and its two neighbours, by at
+// least 1e-3 of the reach (a margin far above round-off). 0 when there is none (then no shortcut).
+double edge_reach(std::span<const Vec2> p, std::size_t edge);
+
 // The same, also returning the overlap polygon (empty when it has fewer than 3 vertices).
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap);

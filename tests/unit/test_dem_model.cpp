@@ -749,3 +749,45 @@ TEST(DemModel, ExactStartMakesGear5FifthOrderOnTheSmoothProblem) {
 }
 
 }  // namespace
+
+namespace {
+
+// The beam forces on every cell equal the loop over the intact beams in beam order (F on i, −F and τ_j on
+// j), bit for bit, with the beam law of beam.hpp: after some beams broke, too.
+TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
+  const CellMesh mesh = rect_mesh(14, 10, 5);
+  Material mat;
+  frac::dem::Beams beams(mesh, mat);
+  const std::size_t n = mesh.cells();
+  frac::Rng rng(9);
+  std::vector<double> q(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    q[k] = mesh.centroid[k].x() + 0.01 * kG * rng.uniform(-1, 1);
+    q[n + k] = mesh.centroid[k].y() + 0.01 * kG * rng.uniform(-1, 1);
+    // Some cells turned far (past the branch-free formula's range), most a little.
+    q[2 * n + k] = k % 7 == 0 ? rng.uniform(-3, 3) : rng.uniform(-0.02, 0.02);
+  }
+  for (int round = 0; round < 3; ++round) {
+    if (round > 0)
+      for (std::size_t b = static_cast<std::size_t>(round); b < beams.size(); b += 5) beams.remove(b);
+    std::vector<double> f(3 * n, 0.0), expected(3 * n, 0.0);
+    beams.add_forces(q, f);
+    for (std::size_t b = 0; b < beams.size(); ++b) {
+      if (!beams.intact()[b]) continue;
+      const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
+      const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
+      const double l0 = d0.norm();
+      const auto r = frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0, q[2 * n + i],
+                                              q[2 * n + j], l0, beams.stiffness(b));
+      expected[i] += r.fx;
+      expected[n + i] += r.fy;
+      expected[j] -= r.fx;
+      expected[n + j] -= r.fy;
+      expected[2 * n + i] += r.torque_i;
+      expected[2 * n + j] += r.torque_j;
+    }
+    for (std::size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(f[k], expected[k]) << "round " << round << ", coordinate " << k;
+  }
+}
+
+}  // namespace

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "core/rng.hpp"
 #include "geometry/overlap.hpp"
 #include "geometry/polygon.hpp"
+#include "mesh/random_lattice.hpp"
 
 namespace {
 
@@ -660,3 +662,92 @@ TEST(Overlap, RejectsBadInput) {
 }
 
 }  // namespace
+
+// The reach of an edge (overlap.hpp): every point within it of the edge's midpoint is inside the
+// half-plane of every edge but the edge and its two neighbours, by at least 1e-3 of the reach.
+TEST(Overlap, EdgeReachKeepsPointsInsideTheOtherEdges) {
+  frac::Rng rng(77);
+  int with_reach = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const Polygon p = random_convex(rng, Vec2(rng.uniform(-5, 5), rng.uniform(-5, 5)), 1.0);
+    const std::size_t m = p.size();
+    for (std::size_t e = 0; e < m; ++e) {
+      const double reach = frac::geometry::edge_reach(p, e);
+      ASSERT_GE(reach, 0.0);
+      if (reach == 0.0) continue;
+      ++with_reach;
+      const Vec2 mid = 0.5 * (p[e] + p[(e + 1) % m]);
+      for (int s = 0; s < 20; ++s) {
+        // Points on the circle of the reach (the worst case) and inside it.
+        const double angle = rng.uniform(0, 2 * std::numbers::pi), r = s < 10 ? reach : rng.uniform(0, reach);
+        const Vec2 x = mid + r * Vec2(std::cos(angle), std::sin(angle));
+        for (std::size_t c = 0; c < m; ++c) {
+          const std::size_t gap = c > e ? c - e : e - c;
+          if (gap <= 1 || gap == m - 1) continue;
+          const Vec2 d = p[(c + 1) % m] - p[c];
+          EXPECT_GE(geo::cross(d, x - p[c]) / d.norm(), 0.999e-3 * reach) << "trial " << trial;
+        }
+      }
+    }
+  }
+  EXPECT_GT(with_reach, 1000);
+  // A triangle has no edge but the neighbours of each: every point of the plane is within the reach.
+  EXPECT_EQ(frac::geometry::edge_reach(Polygon{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, 0),
+            std::numeric_limits<double>::infinity());
+}
+
+// The hint of the contact search (facing edges and their reaches) changes the work, not the result:
+// every field bit for bit, for cells of a random lattice moved apart, into slivers and into deep
+// overlaps, with the facing edges and with edges that face away.
+TEST(Overlap, HintGivesTheSameResultBitForBit) {
+  frac::mesh::RandomLatticeOptions o;
+  o.shape = "rect";
+  o.nx = o.ny = 12;
+  o.width = o.height = 12 * 0.0107;
+  o.seed = 3;
+  const auto mesh = frac::mesh::make_random_lattice(o);
+  const std::size_t n = mesh.cells();
+  const double g = mesh.spacing;
+  std::vector<double> reach(mesh.vertex.size());
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t e = 0; e < mesh.polygon(k).size(); ++e)
+      reach[static_cast<std::size_t>(mesh.vertex_offset[k]) + e] = frac::geometry::edge_reach(mesh.polygon(k), e);
+  frac::Rng rng(11);
+  int overlapping = 0, pairs = 0;
+  for (const double jiggle : {1e-4, 3e-3, 3e-2, 0.2}) {
+    std::vector<std::vector<Vec2>> world(n);
+    std::vector<Vec2> centre(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      centre[k] = mesh.centroid[k] + jiggle * g * Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
+      const double phi = jiggle * rng.uniform(-1, 1), c = std::cos(phi), s = std::sin(phi);
+      for (const Vec2& p : mesh.polygon(k)) world[k].push_back(centre[k] + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+    }
+    for (const auto& beam : mesh.beam) {
+      const auto i = static_cast<std::size_t>(beam[0]), j = static_cast<std::size_t>(beam[1]);
+      for (int variant = 0; variant < 3; ++variant) {
+        frac::geometry::OverlapHint hint;
+        const Vec2 d = centre[j] - centre[i];
+        hint.edge_i = frac::geometry::facing_edge(world[i], d);
+        hint.edge_j = frac::geometry::facing_edge(world[j], -d);
+        if (variant == 1) hint.edge_i = (hint.edge_i + 2) % world[i].size();  // a hint that does not face
+        if (variant == 2) hint.edge_j = (hint.edge_j + 3) % world[j].size();
+        hint.reach_i = reach[static_cast<std::size_t>(mesh.vertex_offset[i]) + hint.edge_i];
+        hint.reach_j = reach[static_cast<std::size_t>(mesh.vertex_offset[j]) + hint.edge_j];
+        const auto plain = convex_overlap(world[i], world[j], centre[i], centre[j], g, hint.edge_j);
+        const auto fast = convex_overlap(world[i], world[j], centre[i], centre[j], g, hint);
+        ++pairs;
+        overlapping += plain.kind != Kind::none;
+        ASSERT_EQ(fast.kind, plain.kind);
+        ASSERT_EQ(fast.area, plain.area);
+        ASSERT_EQ(fast.crossings, plain.crossings);
+        ASSERT_EQ(fast.distinct_crossings, plain.distinct_crossings);
+        for (const auto& [a, b] : {std::pair{fast.p1, plain.p1}, {fast.p2, plain.p2}, {fast.point, plain.point},
+                                   {fast.normal, plain.normal}}) {
+          ASSERT_EQ(a.x(), b.x());
+          ASSERT_EQ(a.y(), b.y());
+        }
+      }
+    }
+  }
+  EXPECT_GT(overlapping, pairs / 3);
+}
