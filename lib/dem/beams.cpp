@@ -40,12 +40,22 @@ void Beams::index_cells() {
   }
   for (std::size_t c = 0; c < n_; ++c) cell_start_[c + 1] += cell_start_[c];
   beams_of_.resize(2 * active_.size());
-  cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  cell_count_.assign(n_, 0);
   for (const std::int32_t b : active_) {
     const auto i = static_cast<std::size_t>(i_[static_cast<std::size_t>(b)]);
     const auto j = static_cast<std::size_t>(j_[static_cast<std::size_t>(b)]);
-    beams_of_[static_cast<std::size_t>(cursor_[i]++)] = {b, 0, 1.0};
-    beams_of_[static_cast<std::size_t>(cursor_[j]++)] = {b, 1, -1.0};
+    beams_of_[static_cast<std::size_t>(cell_start_[i] + cell_count_[i]++)] = {b, 0, 1.0};
+    beams_of_[static_cast<std::size_t>(cell_start_[j] + cell_count_[j]++)] = {b, 1, -1.0};
+  }
+}
+
+void Beams::unindex(std::size_t b) {
+  for (const std::int32_t c : {i_[b], j_[b]}) {
+    CellBeam* first = beams_of_.data() + cell_start_[static_cast<std::size_t>(c)];
+    CellBeam* last = first + cell_count_[static_cast<std::size_t>(c)];
+    CellBeam* hit = std::find_if(first, last, [b](const CellBeam& e) { return e.beam == static_cast<std::int32_t>(b); });
+    std::copy(hit + 1, last, hit);  // the others keep their order
+    --cell_count_[static_cast<std::size_t>(c)];
   }
 }
 
@@ -96,11 +106,12 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const {
   // On cell i the beam adds (F, τ_i), on cell j (−F, τ_j) (as + (−1)·F: the same bits as − F), in beam
   // order, as a loop over the beams would.
   const std::int32_t* start = cell_start_.data();
+  const std::int32_t* beams_in = cell_count_.data();
   const CellBeam* beams_of = beams_of_.data();
 #pragma omp parallel for schedule(static) if (n_ > kMinParallelItems)
   for (std::size_t c = 0; c < n_; ++c) {
     double sx = fx[c], sy = fy[c], st = tz[c];
-    for (auto s = start[c]; s < start[c + 1]; ++s) {
+    for (auto s = start[c]; s < start[c] + beams_in[c]; ++s) {
       const CellBeam cb = beams_of[s];
       const BeamForce& r = out[static_cast<std::size_t>(cb.beam)];
       sx += cb.sign * r.fx;
@@ -146,20 +157,18 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
       active_[kept++] = active_[k];
     } else {
       intact_[b] = 0;
+      unindex(b);
       broken.push_back({static_cast<std::int64_t>(b), verdict[k].mode, verdict[k].energy});
     }
   }
-  if (kept != count) {
-    active_.resize(kept);
-    index_cells();
-  }
+  active_.resize(kept);
 }
 
 void Beams::remove(std::size_t b) {
   if (!intact_[b]) return;
   intact_[b] = 0;
   active_.erase(std::find(active_.begin(), active_.end(), static_cast<std::int32_t>(b)));
-  index_cells();
+  unindex(b);
 }
 
 void Beams::remove_all() {

@@ -58,19 +58,19 @@ class Beams {
     double torque[2];  // on cell i, on cell j
   };
   mutable std::vector<BeamForce> force_;  // per beam (indexed by beam), filled in parallel for the intact ones
-  // The intact beams of each cell in beam order (CSR: beams_of_[cell_start_[c] .. cell_start_[c+1])), with
+  // The intact beams of each cell in beam order (beams_of_[cell_start_[c] .. + cell_count_[c])), with
   // which end the cell is (0: i, 1: j) and the sign of the force on it (+1, −1): each cell gathers its
   // beams' forces in the order a loop over the beams would add them (the same bits), so cells can be
-  // summed in parallel. Rebuilt when beams break.
+  // summed in parallel. A broken beam is taken out of its two cells' lists.
   struct CellBeam {
     std::int32_t beam;
     std::int32_t end;
     double sign;
   };
   void index_cells();
-  std::vector<std::int32_t> cell_start_;
+  void unindex(std::size_t b);
+  std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
-  std::vector<std::int32_t> cursor_;  // scratch of index_cells
   mutable std::vector<std::uint8_t> far_;  // per active beam: beyond beam_response_near_reference
   struct Verdict {
     int mode;       // breaking_mode's
