@@ -206,7 +206,9 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
         continue;
       const Vec2 dc(dx, dy);
       const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
-      if (geometry::edge_separates(pi, fi, pj, slack) || geometry::edge_separates(pj, fj, pi, slack)) {
+      // (A facing edge that is the cached one was just tested.)
+      if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack)) ||
+          (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack))) {
         pair.edge_i = static_cast<std::int32_t>(fi);
         pair.edge_j = static_cast<std::int32_t>(fj);
         continue;

@@ -388,12 +388,12 @@ bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const V
   const double e2 = e.squaredNorm();
   if (!(e2 > 0)) return false;
   // A vertex v penetrates by more than slack when (e × (v − a))/|e| < −slack: compared squared, no sqrt.
+  // The deepest vertex decides (s² grows as s falls below 0); branch-free: a separated pair, the usual
+  // case, has every vertex to test anyway.
   const double limit2 = slack * slack * e2;
-  for (const Vec2& v : q) {
-    const double s = e.y() * (v.x() - a.x()) - e.x() * (v.y() - a.y());
-    if (s < 0 && s * s > limit2) return false;
-  }
-  return true;
+  double deepest = 0.0;
+  for (const Vec2& v : q) deepest = std::min(deepest, e.y() * (v.x() - a.x()) - e.x() * (v.y() - a.y()));
+  return !(deepest < 0 && deepest * deepest > limit2);
 }
 
 }  // namespace frac::geometry
