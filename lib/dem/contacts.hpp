@@ -8,9 +8,11 @@
 //   contact_friction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
 // Every pair force is equal and opposite and acts at one point, so momentum and angular momentum are
 // conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger.
-// Threads (OpenMP) share the neighbour pairs (circle test, separating edges, overlap geometry) and the
-// contact forces, each written to its own slot; the list is then filled, and the forces summed, in pair
-// order, so results do not depend on the thread count.
+// Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order), the
+// neighbour pairs (circle test, separating edges, overlap geometry) and the contact forces, each written
+// to its own slot; the list is then filled, and the forces summed, in pair order, so results do not
+// depend on the thread count. The overlap of a pair gets a hint (geometry::OverlapHint): the cached
+// facing edges and their reaches, precomputed per cell edge, which leave out clip lines that cannot cut.
 #include <array>
 #include <cstdint>
 #include <span>

@@ -212,7 +212,7 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   const bool near_j = hinted_j && cur->size > 0 && within_reach(cur->v.data(), cur->size, sj, first, hint->reach_j);
   if (near_j) {
     clip_by(1);
-    if (cur->size > 0 && m > 2) clip_by(m - 1);
+    if (cur->size > 0) clip_by(m - 1);
   } else {
     for (std::size_t step = 1; step < m && cur->size > 0; ++step) clip_by(step);
   }

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Two builds of dem-run compared on the paper-scale explosion and impact (not part of `make bench`: it
+# needs two binaries). Usage: bench/compare-dem-run.sh OLD_DEM_RUN NEW_DEM_RUN   (REPEATS=9, THREADS="1 2")
+# On a shared machine the load changes from minute to minute, so the two binaries run alternately, round
+# by round (the order swapped every round), and the figure to quote is the median of the per-round
+# ratios new/old, with the fastest run of each (the least disturbed). Also says whether the outputs are the
+# same bit for bit (h5diff, provenance and version aside).
+set -euo pipefail
+old=${1:?usage: bench/compare-dem-run.sh OLD_DEM_RUN NEW_DEM_RUN}
+new=${2:?usage: bench/compare-dem-run.sh OLD_DEM_RUN NEW_DEM_RUN}
+repeats=${REPEATS:-9}
+threads=${THREADS:-"1 2"}
+out=bench/out
+mkdir -p "$out"
+# shellcheck source=bench/lib.sh
+source "$(dirname "$0")/lib.sh"  # time_once, median_of
+require_gnu_time
+scenes=data/scenes
+mesh_gen=$(dirname "$new")/mesh-gen
+[[ -x $mesh_gen ]] || mesh_gen=build/tools/mesh-gen
+"$mesh_gen" voronoi --shape disc --diameter 0.4 --cells 1100 --seed 7 -q -o "$out/ab-disc.h5"
+"$mesh_gen" voronoi --shape rect --size 0.40x0.20 --cells 40x20 --seed 7 -q -o "$out/ab-block.h5"
+
+echo "dem-run, $old against $new, $repeats rounds, $(nproc) cores, $(date -u +%Y-%m-%d)"
+echo
+echo "| run | threads | old: median, fastest s | new: median, fastest s | new/old, median of rounds | same bits |"
+echo "|---|---|---|---|---|---|"
+for run in "explosion ab-disc" "impact ab-block"; do
+  read -r scene mesh <<<"$run"
+  for t in $threads; do
+    walls_old=() walls_new=() ratios=()
+    for ((r = 0; r < repeats; r++)); do
+      order=(old new)
+      ((r % 2)) && order=(new old)
+      declare -A w=()
+      for which in "${order[@]}"; do
+        bin=$old
+        [[ $which == new ]] && bin=$new
+        read -r "w[$which]" _ <<<"$(time_once "$bin" --threads "$t" --scene "$scenes/$scene.ini" "$out/$mesh.h5" -q \
+          -o "$out/ab-$which.h5")"
+      done
+      walls_old+=("${w[old]}")
+      walls_new+=("${w[new]}")
+      ratios+=("$(awk -v a="${w[new]}" -v b="${w[old]}" 'BEGIN { printf "%.3f", a / b }')")
+      unset w
+    done
+    same=yes
+    if h5diff --exclude-path /provenance "$out/ab-old.h5" "$out/ab-new.h5" 2>&1 |
+      grep -v '^attribute: <version of </h5md/creator>>\|^[0-9]* differences found' | grep -q .; then
+      same=no
+    fi
+    fastest_old=$(printf '%s\n' "${walls_old[@]}" | sort -g | head -1)
+    fastest_new=$(printf '%s\n' "${walls_new[@]}" | sort -g | head -1)
+    echo "| $scene | $t | $(median_of "${walls_old[@]}"), $fastest_old | $(median_of "${walls_new[@]}"), $fastest_new |" \
+      "$(median_of "${ratios[@]}") | $same |"
+  done
+done
