@@ -54,6 +54,7 @@ void Beams::unindex(std::size_t b) {
     CellBeam* first = beams_of_.data() + cell_start_[static_cast<std::size_t>(c)];
     CellBeam* last = first + cell_count_[static_cast<std::size_t>(c)];
     CellBeam* hit = std::find_if(first, last, [b](const CellBeam& e) { return e.beam == static_cast<std::int32_t>(b); });
+    if (hit == last) continue;  // not listed (cannot happen for an intact beam)
     std::copy(hit + 1, last, hit);  // the others keep their order
     --cell_count_[static_cast<std::size_t>(c)];
   }
