@@ -69,30 +69,21 @@ bool clip_step(LabelledPolygon& in, const Vec2& a, const Vec2& b, int line_label
   return true;
 }
 
-// The edges of a polygon as the shared-edge test needs them: their first vertices a_c, d_c = p_{c+1} − p_c
-// and tol²·|d_c|². Filled on first use: with a hint, most pairs need none.
+// The edges of a polygon as the shared-edge test needs them: d_c = p_{c+1} − p_c and tol²·|d_c|².
+// Filled on first use: with a hint, most pairs need none.
 struct EdgeTable {
-  std::array<Vec2, kMaxContactPolygonVertices> a, d;
-  std::array<double, kMaxContactPolygonVertices> limit;
-  std::size_t size = 0;
+  std::array<double, kMaxContactPolygonVertices> dx, dy, limit;
+  std::span<const Vec2> p;
   bool filled = false;
   void fill(std::span<const Vec2> polygon, double tol2) {
-    const std::size_t m = polygon.size();
-    for (std::size_t c = 0; c < m; ++c) add(polygon, c, tol2);
-  }
-  // Only the edges c−1, c, c+1. When the overlap lies within the reach of edge c (edge_reach), no other
-  // edge line comes within tol of it, and the test over these three is the test over all.
-  void fill_near(std::span<const Vec2> polygon, std::size_t c, double tol2) {
-    const std::size_t m = polygon.size();
-    add(polygon, c == 0 ? m - 1 : c - 1, tol2);
-    add(polygon, c, tol2);
-    add(polygon, c + 1 == m ? 0 : c + 1, tol2);
-  }
-  void add(std::span<const Vec2> p, std::size_t c, double tol2) {
-    a[size] = p[c];
-    d[size] = p[c + 1 == p.size() ? 0 : c + 1] - p[c];
-    limit[size] = tol2 * d[size].squaredNorm();
-    ++size;
+    p = polygon;
+    const std::size_t m = p.size();
+    for (std::size_t c = 0; c < m; ++c) {
+      const Vec2 d = p[c + 1 == m ? 0 : c + 1] - p[c];
+      dx[c] = d.x();
+      dy[c] = d.y();
+      limit[c] = tol2 * d.squaredNorm();
+    }
     filled = true;
   }
 };
@@ -104,11 +95,45 @@ bool shared_edge(const Vec2& u, const Vec2& v, const EdgeTable& other, double to
   const Vec2 e = v - u;
   if (e.squaredNorm() <= tol2) return true;
   // Branch-free over the edges: which edges pass is unpredictable, and there are few.
+  const std::size_t m = other.p.size();
   bool shared = false;
-  for (std::size_t c = 0; c < other.size; ++c) {
-    const Vec2& d = other.d[c];
-    const double su = cross(d, u - other.a[c]), sv = cross(d, v - other.a[c]);
+  for (std::size_t c = 0; c < m; ++c) {
+    const Vec2 d(other.dx[c], other.dy[c]);
+    const Vec2& a = other.p[c];
+    const double su = cross(d, u - a), sv = cross(d, v - a);
     shared |= (e.dot(d) > 0.0) & (su * su <= other.limit[c]) & (sv * sv <= other.limit[c]);
+  }
+  return shared;
+}
+
+// The three edges c−1, c, c+1 of a polygon (`p` in the local frame) as the shared-edge test needs them.
+// When the overlap lies within the reach of edge c (edge_reach), no other edge line comes within tol of
+// it, and the test over these three is the test over all.
+struct NearEdges {
+  std::array<Vec2, 3> a, d;
+  std::array<double, 3> limit;
+  bool filled = false;
+  void fill(std::span<const Vec2> p, std::size_t c, double tol2) {
+    const std::size_t m = p.size();
+    const std::size_t lines[3] = {c == 0 ? m - 1 : c - 1, c, c + 1 == m ? 0 : c + 1};
+    for (std::size_t s = 0; s < 3; ++s) {
+      const std::size_t l = lines[s];
+      a[s] = p[l];
+      d[s] = p[l + 1 == m ? 0 : l + 1] - a[s];
+      limit[s] = tol2 * d[s].squaredNorm();
+    }
+    filled = true;
+  }
+};
+
+bool shared_edge(const Vec2& u, const Vec2& v, const NearEdges& other, double tol2) {
+  const Vec2 e = v - u;
+  if (e.squaredNorm() <= tol2) return true;
+  bool shared = false;
+  for (std::size_t s = 0; s < 3; ++s) {
+    const Vec2& d = other.d[s];
+    const double su = cross(d, u - other.a[s]), sv = cross(d, v - other.a[s]);
+    shared |= (e.dot(d) > 0.0) & (su * su <= other.limit[s]) & (sv * sv <= other.limit[s]);
   }
   return shared;
 }
@@ -213,22 +238,22 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   shared_state.fill(-1);
   const double tol2 = eps_len * eps_len;
   EdgeTable edges_i, edges_j;
+  NearEdges near_edges_i, near_edges_j;
   const bool near_i = hint && hint->edge_i < n && hint->reach_i > 0.0 &&
                       within_reach(P.v.data(), K, si, hint->edge_i, hint->reach_i);
   auto shared = [&](std::size_t e) {
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
       const Vec2& v = P.v[e + 1 == K ? 0 : e + 1];
-      EdgeTable& other = owner_j(e) ? edges_i : edges_j;
-      if (!other.filled) {
-        const std::span<const Vec2> polygon = owner_j(e) ? si : sj;
-        if (owner_j(e) ? near_i : near_j) {
-          other.fill_near(polygon, owner_j(e) ? hint->edge_i : first, tol2);
-        } else {
-          other.fill(polygon, tol2);
-        }
+      if (owner_j(e) ? near_i : near_j) {
+        NearEdges& other = owner_j(e) ? near_edges_i : near_edges_j;
+        if (!other.filled) other.fill(owner_j(e) ? si : sj, owner_j(e) ? hint->edge_i : first, tol2);
+        shared_state[e] = shared_edge(u, v, other, tol2) ? 1 : 0;
+      } else {
+        EdgeTable& other = owner_j(e) ? edges_i : edges_j;
+        if (!other.filled) other.fill(owner_j(e) ? si : sj, tol2);
+        shared_state[e] = shared_edge(u, v, other, tol2) ? 1 : 0;
       }
-      shared_state[e] = shared_edge(u, v, other, tol2) ? 1 : 0;
     }
     return shared_state[e] == 1;
   };
