@@ -65,7 +65,7 @@ class Beams {
   struct CellBeam {
     std::int32_t beam;
     std::int32_t end;
-    double sign;
+    double sign;  // 1 − 2·end, kept so that the gather loop converts nothing
   };
   void index_cells();
   void unindex(std::size_t b);

@@ -93,7 +93,8 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
 
 // The reach of edge `edge` of the convex polygon p: a radius about the edge's midpoint within which every
 // point is inside the half-plane of every edge of p other than this edge and its two neighbours, by at
-// least 1e-3 of the reach (a margin far above round-off). 0 when there is none (then no shortcut).
+// least 1e-3 of the reach (a margin far above round-off). 0 when there is none (then no shortcut);
+// infinite when every other edge is a neighbour (a triangle).
 double edge_reach(std::span<const Vec2> p, std::size_t edge);
 
 // The same, also returning the overlap polygon (empty when it has fewer than 3 vertices).
