@@ -69,6 +69,9 @@ void RunWriter::observe(const std::string& name, std::int64_t step, double time,
 }
 
 void RunWriter::finish() {
+  for (auto* series : {&position_, &velocity_, &angle_, &angular_velocity_, &intact_, &strain_})
+    if (*series) (*series)->flush();
+  for (auto& [name, series] : observables_) series->flush();
   Group obs = root_.has("observables") ? root_.group("observables") : root_.create_group("observables");
   Group g = obs.create_group(breaks_name(cells_));
   std::vector<std::int64_t> step, index;

@@ -59,7 +59,7 @@ class RunWriter {
     observe(name, step, time, std::span<const double>(&value, 1), unit);
   }
   void record_break(const BreakEvent& e) { breaks_.push_back(e); }
-  // Writes the break events; call once at the end.
+  // Writes what the series still buffer and the break events; call once at the end.
   void finish();
   std::size_t frames() const { return position_ ? position_->frames() : 0; }
 

@@ -7,6 +7,12 @@
 namespace frac::io {
 namespace {
 
+// Rows per chunk of a series whose frames hold `frame` values: about 64 Ki values, many small frames per
+// chunk, or one large frame.
+hsize_t chunk_rows(hsize_t frame) {
+  return std::max<hsize_t>(1, std::min<hsize_t>(1024, (1u << 16) / std::max<hsize_t>(frame, 1)));
+}
+
 Hid create_extendible(const Group& g, const char* name, hid_t file_type, const std::vector<hsize_t>& frame_dims,
                       bool compress) {
   std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{1};
@@ -17,8 +23,7 @@ Hid create_extendible(const Group& g, const char* name, hid_t file_type, const s
     chunk.push_back(std::max<hsize_t>(d, 1));
     frame *= d;
   }
-  // Chunks of about 64 Ki values: many small frames per chunk, or one large frame.
-  chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(1024, (1u << 16) / std::max<hsize_t>(frame, 1)));
+  chunk[0] = chunk_rows(frame);
   Hid space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()));
   Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_obj_track_times(dcpl.get(), 0);
@@ -32,9 +37,10 @@ Hid create_extendible(const Group& g, const char* name, hid_t file_type, const s
   return d;
 }
 
+// Writes `rows` rows from `data` at row `row`, extending the dataset to row + rows.
 void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type, const void* data,
-                 std::size_t row, const std::vector<hsize_t>& frame_dims) {
-  std::vector<hsize_t> dims{row + 1}, start{row}, count{1};
+                 std::size_t row, std::size_t rows, const std::vector<hsize_t>& frame_dims) {
+  std::vector<hsize_t> dims{row + rows}, start{row}, count{rows};
   for (auto fd : frame_dims) {
     dims.push_back(fd);
     start.push_back(0);
@@ -45,7 +51,7 @@ void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type,
   H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
   Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
   if (H5Dwrite(d.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, data) < 0)
-    throw RuntimeError(g.where(name) + ": cannot write frame " + std::to_string(row));
+    throw RuntimeError(g.where(name) + ": cannot write frames " + std::to_string(row) + " to " + std::to_string(row + rows - 1));
 }
 
 }  // namespace
@@ -54,6 +60,7 @@ SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsi
                            std::string_view unit, SeriesType type)
     : group_(parent.create_group(name)), frame_dims_(std::move(frame_dims)) {
   for (auto d : frame_dims_) frame_size_ *= d;
+  rows_per_chunk_ = chunk_rows(frame_size_);
   step_ = create_extendible(group_, "step", H5T_STD_I64LE, {}, false);
   time_ = create_extendible(group_, "time", H5T_IEEE_F64LE, {}, false);
   const hid_t ftype = type == SeriesType::float64 ? H5T_IEEE_F64LE
@@ -64,25 +71,43 @@ SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsi
   if (!unit.empty()) group_.set_attr("unit", unit, "value");
 }
 
-void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame,
-                              std::size_t count) {
+void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, std::size_t value_bytes,
+                              const void* frame, std::size_t count) {
   if (count != frame_size_)
     throw RuntimeError(group_.where("value") + ": frame of " + std::to_string(count) + " values, expected " +
                        std::to_string(frame_size_));
-  append_rows(group_, "step", step_, H5T_NATIVE_INT64, &step, frames_, {});
-  append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, &time, frames_, {});
-  append_rows(group_, "value", value_, mem_type, frame, frames_, frame_dims_);
+  if (mem_type != buffered_type_) {
+    flush();
+    buffered_type_ = mem_type;
+  }
+  step_buffer_.push_back(step);
+  time_buffer_.push_back(time);
+  const auto* bytes = static_cast<const unsigned char*>(frame);
+  value_buffer_.insert(value_buffer_.end(), bytes, bytes + count * value_bytes);
   ++frames_;
+  if (frames_ - written_ >= rows_per_chunk_) flush();
+}
+
+void SeriesWriter::flush() {
+  const std::size_t rows = frames_ - written_;
+  if (rows == 0) return;
+  append_rows(group_, "step", step_, H5T_NATIVE_INT64, step_buffer_.data(), written_, rows, {});
+  append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, time_buffer_.data(), written_, rows, {});
+  append_rows(group_, "value", value_, buffered_type_, value_buffer_.data(), written_, rows, frame_dims_);
+  written_ = frames_;
+  step_buffer_.clear();
+  time_buffer_.clear();
+  value_buffer_.clear();
 }
 
 void SeriesWriter::append(std::int64_t step, double time, std::span<const double> frame) {
-  append_raw(step, time, H5T_NATIVE_DOUBLE, frame.data(), frame.size());
+  append_raw(step, time, H5T_NATIVE_DOUBLE, sizeof(double), frame.data(), frame.size());
 }
 void SeriesWriter::append(std::int64_t step, double time, std::span<const std::uint8_t> frame) {
-  append_raw(step, time, H5T_NATIVE_UINT8, frame.data(), frame.size());
+  append_raw(step, time, H5T_NATIVE_UINT8, sizeof(std::uint8_t), frame.data(), frame.size());
 }
 void SeriesWriter::append(std::int64_t step, double time, std::span<const std::int64_t> frame) {
-  append_raw(step, time, H5T_NATIVE_INT64, frame.data(), frame.size());
+  append_raw(step, time, H5T_NATIVE_INT64, sizeof(std::int64_t), frame.data(), frame.size());
 }
 
 SeriesInfo read_series_info(const Group& parent, std::string_view name) {

@@ -1,6 +1,7 @@
 // The HDF5 layer: round trips of both meshes, header checks, provenance lineage, atomic output.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "core/error.hpp"
@@ -8,6 +9,7 @@
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
+#include "io/series.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;
@@ -149,6 +151,68 @@ TEST(Io, OutputAppearsOnlyOnCommit) {
   }
   EXPECT_TRUE(fs::exists(path));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
+}
+
+// Series are written a chunk at a time (io/series.hpp): every frame appended comes back, in order, whether
+// it crossed a chunk boundary, sat in a partly filled chunk or waited in the buffer until flush().
+TEST(Io, SeriesWriteEveryFrameAcrossChunks) {
+  const auto dir = temp_dir("series");
+  const auto path = (dir / "s.h5").string();
+  // 20000 values a frame: 3 frames a chunk; scalars: 1024 a chunk; 2500 bytes a frame: 26 a chunk.
+  const std::size_t big = 20000, bytes = 2500, big_frames = 7, scalars = 2500, byte_frames = 30;
+  auto big_value = [](std::size_t f, std::size_t k) { return 1e-3 * static_cast<double>(f) + static_cast<double>(k); };
+  auto byte_value = [](std::size_t f, std::size_t k) { return static_cast<std::uint8_t>((f * 7 + k) % 251); };
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::SeriesWriter a(out.root(), "big", {big / 2, 2}, "m");
+    io::SeriesWriter b(out.root(), "scalar", {}, "J");
+    io::SeriesWriter c(out.root(), "bytes", {bytes}, "", io::SeriesType::uint8);
+    std::vector<double> frame(big);
+    std::vector<std::uint8_t> byte_frame(bytes);
+    for (std::size_t f = 0; f < big_frames; ++f) {
+      for (std::size_t k = 0; k < big; ++k) frame[k] = big_value(f, k);
+      a.append(static_cast<std::int64_t>(10 * f), 0.5 * static_cast<double>(f), std::span<const double>(frame));
+    }
+    for (std::size_t f = 0; f < scalars; ++f) {
+      const double v = std::sqrt(static_cast<double>(f));
+      b.append(static_cast<std::int64_t>(f), static_cast<double>(f), std::span<const double>(&v, 1));
+    }
+    for (std::size_t f = 0; f < byte_frames; ++f) {
+      for (std::size_t k = 0; k < bytes; ++k) byte_frame[k] = byte_value(f, k);
+      c.append(static_cast<std::int64_t>(f), 0.0, std::span<const std::uint8_t>(byte_frame));
+    }
+    EXPECT_EQ(a.frames(), big_frames);
+    a.flush();
+    b.flush();
+    c.flush();
+    out.commit();
+  }
+  const auto root = io::open_input(path);
+  const auto info = io::read_series_info(root, "big");
+  ASSERT_EQ(info.step.size(), big_frames);
+  EXPECT_EQ(info.frame_dims, (std::vector<hsize_t>{big / 2, 2}));
+  for (std::size_t f = 0; f < big_frames; ++f) {
+    EXPECT_EQ(info.step[f], static_cast<std::int64_t>(10 * f));
+    EXPECT_EQ(info.time[f], 0.5 * static_cast<double>(f));
+    const auto v = io::read_series_frame<double>(root, "big", static_cast<long long>(f));
+    ASSERT_EQ(v.size(), big);
+    for (std::size_t k = 0; k < big; ++k) ASSERT_EQ(v[k], big_value(f, k)) << "frame " << f << " value " << k;
+  }
+  const auto s = io::read_series_info(root, "scalar");
+  ASSERT_EQ(s.step.size(), scalars);
+  const auto all = root.group("scalar").read<double>("value", nullptr, 1);
+  ASSERT_EQ(all.size(), scalars);
+  for (std::size_t f = 0; f < scalars; ++f) {
+    ASSERT_EQ(s.step[f], static_cast<std::int64_t>(f));
+    ASSERT_EQ(all[f], std::sqrt(static_cast<double>(f))) << "row " << f;
+  }
+  for (std::size_t f = 0; f < byte_frames; ++f) {
+    const auto v = io::read_series_frame<std::uint8_t>(root, "bytes", static_cast<long long>(f));
+    ASSERT_EQ(v.size(), bytes);
+    for (std::size_t k = 0; k < bytes; ++k) ASSERT_EQ(v[k], byte_value(f, k)) << "frame " << f;
+  }
   fs::remove_all(dir);
 }
 
