@@ -87,7 +87,10 @@ void ContactSearch::rebuild(std::span<const double> q) {
     ymax = std::max(ymax, y[k]);
   }
   // A non-finite position ends the run at the step's check; build no list from it.
-  if (!std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin)) return;
+  if (!std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin)) {
+    index_pairs();
+    return;
+  }
   const double side = 2 * bodies_->max_bound_radius + skin_;
   // Bound the grid size (fragments flying far apart): at most ~4 grid cells per body.
   const double span_x = xmax - xmin, span_y = ymax - ymin;
@@ -139,6 +142,7 @@ void ContactSearch::rebuild(std::span<const double> q) {
   };
   if (n <= kMinParallelItems) {
     for (std::size_t i = 0; i < n; ++i) pairs_of(i, neighbours_);
+    index_pairs();
     return;
   }
   const auto most = static_cast<std::size_t>(max_threads());
@@ -158,6 +162,27 @@ void ContactSearch::rebuild(std::span<const double> q) {
     const auto& buf = thread_pairs_[static_cast<std::size_t>(t)];
     neighbours_.insert(neighbours_.end(), buf.begin(), buf.end());
   }
+  index_pairs();
+}
+
+void ContactSearch::index_pairs() {
+  const std::size_t n = bodies_->n, pairs = neighbours_.size();
+  cell_pair_start_.assign(n + 1, 0);
+  for (const auto& pair : neighbours_) {
+    ++cell_pair_start_[static_cast<std::size_t>(pair.i) + 1];
+    ++cell_pair_start_[static_cast<std::size_t>(pair.j) + 1];
+  }
+  for (std::size_t c = 0; c < n; ++c) cell_pair_start_[c + 1] += cell_pair_start_[c];
+  cell_links_.resize(2 * pairs);
+  // Filled in pair order, so each cell's list is in pair order (a cursor per cell: the start shifted by one).
+  std::vector<std::int32_t>& cursor = cell_pair_start_;
+  for (std::size_t p = 0; p < pairs; ++p) {
+    const auto i = static_cast<std::size_t>(neighbours_[p].i), j = static_cast<std::size_t>(neighbours_[p].j);
+    cell_links_[static_cast<std::size_t>(cursor[i]++)] = {static_cast<std::int32_t>(p), 0};
+    cell_links_[static_cast<std::size_t>(cursor[j]++)] = {static_cast<std::int32_t>(p), 1};
+  }
+  for (std::size_t c = n; c > 0; --c) cursor[c] = cursor[c - 1];
+  cursor[0] = 0;
 }
 
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
@@ -185,70 +210,107 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     geometry_.resize(pairs + pairs / 4);
     pair_state_.resize(pairs + pairs / 4);
   }
-  std::int64_t candidates = 0, overlapping = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : candidates, overlapping) if (pairs > kMinParallelItems)
-  for (std::size_t p = 0; p < pairs; ++p) {
-    auto& pair = neighbours_[p];
-    const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
-    const double dx = x[j] - x[i], dy = y[j] - y[i];
-    const double reach = r[i] + r[j];
-    if (!(dx * dx + dy * dy < reach * reach)) {
-      pair.overlapping = false;
-      pair_state_[p] = PairState::apart;
-      continue;
-    }
-    pair_state_[p] = PairState::candidate;
-    ++candidates;
-    const auto pi = world_polygon(i), pj = world_polygon(j);
-    if (!pair.overlapping) {
-      if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
-          geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
-        continue;
-      const Vec2 dc(dx, dy);
-      const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
-      // (A facing edge that is the cached one was just tested.)
-      if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack)) ||
-          (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack))) {
-        pair.edge_i = static_cast<std::int32_t>(fi);
-        pair.edge_j = static_cast<std::int32_t>(fj);
+  if (contact_of_pair_.size() < pairs) contact_of_pair_.resize(pairs + pairs / 4);
+  const auto most = static_cast<std::size_t>(max_threads());
+  if (block_count_.size() < 3 * most + 3) block_count_.resize(3 * most + 3);
+  std::int64_t candidates = 0;
+#pragma omp parallel if (pairs > kMinParallelItems)
+  {
+#pragma omp for schedule(dynamic, 64) reduction(+ : candidates)
+    for (std::size_t p = 0; p < pairs; ++p) {
+      auto& pair = neighbours_[p];
+      const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
+      const double dx = x[j] - x[i], dy = y[j] - y[i];
+      const double reach = r[i] + r[j];
+      if (!(dx * dx + dy * dy < reach * reach)) {
+        pair.overlapping = false;
+        pair_state_[p] = PairState::apart;
         continue;
       }
+      pair_state_[p] = PairState::candidate;
+      ++candidates;
+      const auto pi = world_polygon(i), pj = world_polygon(j);
+      if (!pair.overlapping) {
+        if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
+            geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
+          continue;
+        const Vec2 dc(dx, dy);
+        const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
+        // (A facing edge that is the cached one was just tested.)
+        if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack)) ||
+            (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack))) {
+          pair.edge_i = static_cast<std::int32_t>(fi);
+          pair.edge_j = static_cast<std::int32_t>(fj);
+          continue;
+        }
+      }
+      const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
+      geometry::OverlapHint hint;
+      hint.edge_i = static_cast<std::size_t>(pair.edge_i);
+      hint.edge_j = static_cast<std::size_t>(pair.edge_j);
+      hint.reach_i = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[i]) + hint.edge_i];
+      hint.reach_j = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[j]) + hint.edge_j];
+      const auto geo = geometry::convex_overlap(pi, pj, ci, cj, g, hint);
+      pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
+      if (pair.overlapping) {
+        geometry_[p] = geo;
+        pair_state_[p] = PairState::overlapping;
+      }
     }
-    const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
-    geometry::OverlapHint hint;
-    hint.edge_i = static_cast<std::size_t>(pair.edge_i);
-    hint.edge_j = static_cast<std::size_t>(pair.edge_j);
-    hint.reach_i = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[i]) + hint.edge_i];
-    hint.reach_j = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[j]) + hint.edge_j];
-    const auto geo = geometry::convex_overlap(pi, pj, ci, cj, g, hint);
-    pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
-    if (pair.overlapping) {
-      geometry_[p] = geo;
-      pair_state_[p] = PairState::overlapping;
-      ++overlapping;
+    // The list in pair order, the same whatever the thread count: each thread counts the overlapping pairs
+    // of its block of pairs, then fills its block at the offset of the blocks before it.
+    const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+    const std::size_t first = pairs * t / nt, last = pairs * (t + 1) / nt;
+    std::int64_t count = 0, enclosed = 0, multi = 0;
+    for (std::size_t p = first; p < last; ++p) {
+      if (pair_state_[p] != PairState::overlapping) continue;
+      ++count;
+      enclosed += geometry_[p].kind == geometry::ContactGeometry::Kind::enclosed;
+      multi += geometry_[p].distinct_crossings > 2;
+    }
+    block_count_[3 * t] = count;
+    block_count_[3 * t + 1] = enclosed;
+    block_count_[3 * t + 2] = multi;
+#pragma omp barrier
+#pragma omp single
+    {
+      std::int64_t total = 0, total_enclosed = 0, total_multi = 0;
+      for (std::size_t s = 0; s < nt; ++s) {
+        const std::int64_t c = block_count_[3 * s];
+        block_count_[3 * s] = total;  // now the block's offset
+        total += c;
+        total_enclosed += block_count_[3 * s + 1];
+        total_multi += block_count_[3 * s + 2];
+      }
+      out.resize(static_cast<std::size_t>(total));
+      out.enclosed = total_enclosed;
+      out.multi_crossing = total_multi;
+    }
+    auto k = static_cast<std::size_t>(block_count_[3 * t]);
+    for (std::size_t p = first; p < last; ++p) {
+      if (pair_state_[p] != PairState::overlapping) {
+        contact_of_pair_[p] = -1;
+        continue;
+      }
+      const auto& geo = geometry_[p];
+      const auto& pair = neighbours_[p];
+      out.i[k] = pair.i;
+      out.j[k] = pair.j;
+      out.rx[k] = geo.point.x();
+      out.ry[k] = geo.point.y();
+      out.nx[k] = geo.normal.x();
+      out.ny[k] = geo.normal.y();
+      out.area[k] = geo.area;
+      out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
+      out.fn[k] = 0.0;
+      contact_of_pair_[p] = static_cast<std::int32_t>(k);
+      ++k;
     }
   }
-  // The list in pair order: the same whatever the thread count.
-  out.resize(static_cast<std::size_t>(overlapping));
   out.candidate_pairs = candidates;
-  std::size_t k = 0;
-  for (std::size_t p = 0; p < pairs; ++p) {
-    if (pair_state_[p] != PairState::overlapping) continue;
-    const auto& geo = geometry_[p];
-    const auto& pair = neighbours_[p];
-    if (geo.kind == geometry::ContactGeometry::Kind::enclosed) ++out.enclosed;
-    if (geo.distinct_crossings > 2) ++out.multi_crossing;
-    out.i[k] = pair.i;
-    out.j[k] = pair.j;
-    out.rx[k] = geo.point.x();
-    out.ry[k] = geo.point.y();
-    out.nx[k] = geo.normal.x();
-    out.ny[k] = geo.normal.y();
-    out.area[k] = geo.area;
-    out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
-    out.fn[k] = 0.0;
-    ++k;
-  }
+  out.cell_start = cell_pair_start_;
+  out.cell_links = cell_links_;
+  out.contact_of_pair = std::span<const std::int32_t>(contact_of_pair_.data(), pairs);
 }
 
 namespace {
@@ -267,8 +329,9 @@ inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::spa
 
 // One contact force term: force_of(k) gives the force on i of contact k (j receives its opposite), applied
 // at R_k. The pair forces, their torques and powers are computed in parallel, each in its own slot, then
-// added to the bodies in contact order (one thread): the same bits whatever the thread count. Returns the
-// power delivered to the bodies, F·(v_i(R) − v_j(R)) summed over the contacts.
+// added to the bodies in contact order (each cell in parallel, or one thread over the list): the same bits
+// whatever the thread count. Returns the power delivered to the bodies, F·(v_i(R) − v_j(R)) summed over the
+// contacts in contact order.
 template <class ForceOf>
 double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q, std::span<const double> v,
                        std::span<double> f, ForceOf&& force_of) {
@@ -279,22 +342,53 @@ double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q,
   const double* vx = v.data();
   const double* vy = vx + n;
   const double* w = vy + n;
-#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
-  for (std::size_t k = 0; k < count; ++k) {
-    const Vec2 force = force_of(k);
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const double fx = force.x(), fy = force.y();
-    const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
-    const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
-    const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
-    c.pair_force[k] = {fx, fy, rix * fy - riy * fx, rjx * fy - rjy * fx, fx * (vix - vjx) + fy * (viy - vjy)};
-  }
   double* fxa = f.data();
   double* fya = fxa + n;
   double* tz = fya + n;
+  const bool parallel = count > kMinParallelItems;
+  // With more than one thread, each cell gathers its contacts' forces (through the list's per-cell index, in
+  // contact order: the same additions in the same order as the sum over the list below).
+  const bool gather = parallel && max_threads() > 1 && c.cell_start.size() == n + 1;
+#pragma omp parallel if (parallel)
+  {
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < count; ++k) {
+      const Vec2 force = force_of(k);
+      const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+      const double fx = force.x(), fy = force.y();
+      const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
+      const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
+      const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
+      c.pair_force[k] = {fx, fy, rix * fy - riy * fx, rjx * fy - rjy * fx, fx * (vix - vjx) + fy * (viy - vjy)};
+    }
+    if (gather) {
+#pragma omp for schedule(static)
+      for (std::size_t cell = 0; cell < n; ++cell) {
+        const auto first = static_cast<std::size_t>(c.cell_start[cell]);
+        const auto last = static_cast<std::size_t>(c.cell_start[cell + 1]);
+        for (std::size_t s = first; s < last; ++s) {
+          const CellLink link = c.cell_links[s];
+          const std::int32_t k = c.contact_of_pair[static_cast<std::size_t>(link.pair)];
+          if (k < 0) continue;
+          const PairForce& p = c.pair_force[static_cast<std::size_t>(k)];
+          if (link.end == 0) {
+            fxa[cell] += p.fx;
+            fya[cell] += p.fy;
+            tz[cell] += p.torque_i;
+          } else {
+            fxa[cell] -= p.fx;
+            fya[cell] -= p.fy;
+            tz[cell] -= p.torque_j;
+          }
+        }
+      }
+    }
+  }
   double power = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const PairForce& p = c.pair_force[k];
+    power += p.power;
+    if (gather) continue;
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     fxa[i] += p.fx;
     fya[i] += p.fy;
@@ -302,7 +396,6 @@ double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q,
     fya[j] -= p.fy;
     tz[i] += p.torque_i;
     tz[j] -= p.torque_j;
-    power += p.power;
   }
   return power;
 }

@@ -10,8 +10,9 @@
 // conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger.
 // Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order), the
 // neighbour pairs (circle test, separating edges, overlap geometry) and the contact forces, each written
-// to its own slot; the list is then filled, and the forces summed, in pair order, so results do not
-// depend on the thread count. The overlap of a pair gets a hint (geometry::OverlapHint): the cached
+// to its own slot; the list is then filled in pair order (each thread its block of pairs, at offsets from
+// the counts of the blocks before it), and each cell gathers its contacts' forces in contact order (through
+// a per-cell index of the neighbour pairs), so results do not depend on the thread count. The overlap of a pair gets a hint (geometry::OverlapHint): the cached
 // facing edges and their reaches, precomputed per cell edge, which leave out clip lines that cannot cut.
 #include <array>
 #include <cstdint>
@@ -33,6 +34,12 @@ struct PairForce {
   double fx, fy, torque_i, torque_j, power;
 };
 
+// One end of a neighbour pair, in a cell's list of its pairs.
+struct CellLink {
+  std::int32_t pair;
+  std::int32_t end;  // 0: the cell is the pair's i, 1: its j
+};
+
 struct ContactList {
   std::vector<std::int32_t> i, j;
   std::vector<double> rx, ry;   // application point R, m
@@ -41,6 +48,12 @@ struct ContactList {
   std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
   std::vector<double> fn;       // normal force on i along n (elastic + damping), N; negative = repulsive
   std::vector<PairForce> pair_force;  // scratch of the force terms (one slot per contact, filled in parallel)
+  // Per-cell index of the contacts, set by ContactSearch::find (empty for a list built by hand): cell c's
+  // neighbour pairs are cell_links[cell_start[c] .. cell_start[c + 1]) in pair order, and contact_of_pair
+  // gives a pair's contact, or −1. A cell meets its contacts in contact order, as a sum over the list does.
+  std::span<const std::int32_t> cell_start;
+  std::span<const CellLink> cell_links;
+  std::span<const std::int32_t> contact_of_pair;
   std::size_t size() const { return i.size(); }
   void clear();
   // Makes room for `count` contacts (entries not yet set) and zeroes the diagnostics.
@@ -88,6 +101,11 @@ class ContactSearch {
   };
   std::vector<NeighbourPair> neighbours_;
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
+  void index_pairs();                         // the per-cell lists of neighbour pairs, below
+  std::vector<std::int32_t> cell_pair_start_;  // cell c's pairs: cell_links_[start[c] .. start[c + 1])
+  std::vector<CellLink> cell_links_;
+  std::vector<std::int32_t> contact_of_pair_;  // per pair: its contact in the last list, or −1
+  std::vector<std::int64_t> block_count_;      // overlapping pairs per thread's block of pairs
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)
