@@ -80,6 +80,14 @@ void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, st
     flush();
     buffered_type_ = mem_type;
   }
+  if (rows_per_chunk_ == 1) {
+    // A frame fills a chunk: written at once, from the caller's memory (no copy of a large frame).
+    append_rows(group_, "step", step_, H5T_NATIVE_INT64, &step, written_, 1, {});
+    append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, &time, written_, 1, {});
+    append_rows(group_, "value", value_, mem_type, frame, written_, 1, frame_dims_);
+    written_ = ++frames_;
+    return;
+  }
   step_buffer_.push_back(step);
   time_buffer_.push_back(time);
   const auto* bytes = static_cast<const unsigned char*>(frame);

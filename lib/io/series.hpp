@@ -3,8 +3,9 @@
 // value [T, ...] (one frame of fixed shape per entry), extendible, chunked and compressed, so a run can
 // append frames as it goes and never holds its trajectory in memory. Frames are buffered up to one chunk of
 // the value dataset (at most 64 Ki values) and written a chunk at a time: one HDF5 write per chunk instead of
-// three per frame (an observable sampled every few steps otherwise costs more than the step). flush() writes
-// what is buffered; the owner calls it before the file is closed. Read back whole, or one frame.
+// three per frame (an observable sampled every few steps otherwise costs more than the step); a frame that
+// fills a chunk by itself is written at once, without a copy. flush() writes what is buffered; the owner
+// calls it before the file is closed. Read back whole, or one frame.
 #include <cstdint>
 #include <span>
 #include <string>

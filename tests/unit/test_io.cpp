@@ -159,8 +159,10 @@ TEST(Io, OutputAppearsOnlyOnCommit) {
 TEST(Io, SeriesWriteEveryFrameAcrossChunks) {
   const auto dir = temp_dir("series");
   const auto path = (dir / "s.h5").string();
-  // 20000 values a frame: 3 frames a chunk; scalars: 1024 a chunk; 2500 bytes a frame: 26 a chunk.
+  // 20000 values a frame: 3 frames a chunk; scalars: 1024 a chunk; 2500 bytes a frame: 26 a chunk; 70000
+  // values a frame: a chunk each (written at once).
   const std::size_t big = 20000, bytes = 2500, big_frames = 7, scalars = 2500, byte_frames = 30;
+  const std::size_t huge = 70000, huge_frames = 3;
   auto big_value = [](std::size_t f, std::size_t k) { return 1e-3 * static_cast<double>(f) + static_cast<double>(k); };
   auto byte_value = [](std::size_t f, std::size_t k) { return static_cast<std::uint8_t>((f * 7 + k) % 251); };
   {
@@ -169,6 +171,12 @@ TEST(Io, SeriesWriteEveryFrameAcrossChunks) {
     io::SeriesWriter a(out.root(), "big", {big / 2, 2}, "m");
     io::SeriesWriter b(out.root(), "scalar", {}, "J");
     io::SeriesWriter c(out.root(), "bytes", {bytes}, "", io::SeriesType::uint8);
+    io::SeriesWriter d(out.root(), "huge", {huge}, "m");
+    std::vector<double> huge_frame(huge);
+    for (std::size_t f = 0; f < huge_frames; ++f) {
+      for (std::size_t k = 0; k < huge; ++k) huge_frame[k] = big_value(f + 100, k);
+      d.append(static_cast<std::int64_t>(f), 0.0, std::span<const double>(huge_frame));
+    }
     std::vector<double> frame(big);
     std::vector<std::uint8_t> byte_frame(bytes);
     for (std::size_t f = 0; f < big_frames; ++f) {
@@ -187,6 +195,7 @@ TEST(Io, SeriesWriteEveryFrameAcrossChunks) {
     a.flush();
     b.flush();
     c.flush();
+    d.flush();
     out.commit();
   }
   const auto root = io::open_input(path);
@@ -207,6 +216,12 @@ TEST(Io, SeriesWriteEveryFrameAcrossChunks) {
   for (std::size_t f = 0; f < scalars; ++f) {
     ASSERT_EQ(s.step[f], static_cast<std::int64_t>(f));
     ASSERT_EQ(all[f], std::sqrt(static_cast<double>(f))) << "row " << f;
+  }
+  ASSERT_EQ(io::read_series_info(root, "huge").step.size(), huge_frames);
+  for (std::size_t f = 0; f < huge_frames; ++f) {
+    const auto v = io::read_series_frame<double>(root, "huge", static_cast<long long>(f));
+    ASSERT_EQ(v.size(), huge);
+    for (std::size_t k = 0; k < huge; ++k) ASSERT_EQ(v[k], big_value(f + 100, k)) << "frame " << f;
   }
   for (std::size_t f = 0; f < byte_frames; ++f) {
     const auto v = io::read_series_frame<std::uint8_t>(root, "bytes", static_cast<long long>(f));
