@@ -185,6 +185,76 @@ void ContactSearch::index_pairs() {
   cursor[0] = 0;
 }
 
+// Pair p at state (x, y): bounding circles, then the separating edges, then the overlap geometry, into the
+// pair's own slot. Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap
+// would keep, so the order of the tests changes no result, only the time: a pair that overlapped at the last
+// search goes straight to clipping; the others try the facing edges that last separated them (cached per
+// pair), then the current facing edges, which become the cached ones when they separate. Returns whether
+// the bounding circles overlap.
+bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, double slack) {
+  auto& pair = neighbours_[p];
+  const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
+  const double dx = x[j] - x[i], dy = y[j] - y[i];
+  const double reach = bodies_->bound_radius[i] + bodies_->bound_radius[j];
+  if (!(dx * dx + dy * dy < reach * reach)) {
+    pair.overlapping = false;
+    pair_state_[p] = PairState::apart;
+    return false;
+  }
+  pair_state_[p] = PairState::candidate;
+  const auto pi = world_polygon(i), pj = world_polygon(j);
+  if (!pair.overlapping) {
+    if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
+        geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
+      return true;
+    const Vec2 dc(dx, dy);
+    const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
+    // (A facing edge that is the cached one was just tested.)
+    if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack)) ||
+        (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack))) {
+      pair.edge_i = static_cast<std::int32_t>(fi);
+      pair.edge_j = static_cast<std::int32_t>(fj);
+      return true;
+    }
+  }
+  geometry::OverlapHint hint;
+  hint.edge_i = static_cast<std::size_t>(pair.edge_i);
+  hint.edge_j = static_cast<std::size_t>(pair.edge_j);
+  hint.reach_i = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[i]) + hint.edge_i];
+  hint.reach_j = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[j]) + hint.edge_j];
+  const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), bodies_->length_scale, hint);
+  pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
+  if (pair.overlapping) {
+    geometry_[p] = geo;
+    pair_state_[p] = PairState::overlapping;
+  }
+  return true;
+}
+
+// The overlapping pairs among [first, last) into the list from entry k on, in pair order.
+void ContactSearch::fill_contacts(std::size_t first, std::size_t last, std::size_t k, ContactList& out) {
+  const double* inv_d = inv_diameter_.data();
+  for (std::size_t p = first; p < last; ++p) {
+    if (pair_state_[p] != PairState::overlapping) {
+      contact_of_pair_[p] = -1;
+      continue;
+    }
+    const auto& geo = geometry_[p];
+    const auto& pair = neighbours_[p];
+    out.i[k] = pair.i;
+    out.j[k] = pair.j;
+    out.rx[k] = geo.point.x();
+    out.ry[k] = geo.point.y();
+    out.nx[k] = geo.normal.x();
+    out.ny[k] = geo.normal.y();
+    out.area[k] = geo.area;
+    out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
+    out.fn[k] = 0.0;
+    contact_of_pair_[p] = static_cast<std::int32_t>(k);
+    ++k;
+  }
+}
+
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
   const std::size_t n = bodies_->n;
   if (n < 2) {
@@ -195,15 +265,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   if (stale(q)) rebuild(q);
   const double* x = q.data();
   const double* y = x + n;
-  const auto& r = bodies_->bound_radius;
-  const double* inv_d = inv_diameter_.data();
   const double g = bodies_->length_scale;
-  // Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap would keep,
-  // so the order of the tests changes no result, only the time: a pair that overlapped at the last
-  // search goes straight to clipping; the others try the facing edges that last separated them (cached
-  // per pair), then the current facing edges, which become the cached ones when they separate.
-  // Each neighbour pair in parallel, into its own slot (dynamic schedule: pairs that clip cost ten times
-  // those that do not), then the list filled in pair order.
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const std::size_t pairs = neighbours_.size();
   if (geometry_.size() < pairs) {
@@ -216,47 +278,9 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   std::int64_t candidates = 0;
 #pragma omp parallel if (pairs > kMinParallelItems)
   {
+    // Each neighbour pair in its own slot (dynamic schedule: pairs that clip cost ten times those that do not).
 #pragma omp for schedule(dynamic, 64) reduction(+ : candidates)
-    for (std::size_t p = 0; p < pairs; ++p) {
-      auto& pair = neighbours_[p];
-      const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
-      const double dx = x[j] - x[i], dy = y[j] - y[i];
-      const double reach = r[i] + r[j];
-      if (!(dx * dx + dy * dy < reach * reach)) {
-        pair.overlapping = false;
-        pair_state_[p] = PairState::apart;
-        continue;
-      }
-      pair_state_[p] = PairState::candidate;
-      ++candidates;
-      const auto pi = world_polygon(i), pj = world_polygon(j);
-      if (!pair.overlapping) {
-        if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
-            geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
-          continue;
-        const Vec2 dc(dx, dy);
-        const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
-        // (A facing edge that is the cached one was just tested.)
-        if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack)) ||
-            (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack))) {
-          pair.edge_i = static_cast<std::int32_t>(fi);
-          pair.edge_j = static_cast<std::int32_t>(fj);
-          continue;
-        }
-      }
-      const Vec2 ci(x[i], y[i]), cj(x[j], y[j]);
-      geometry::OverlapHint hint;
-      hint.edge_i = static_cast<std::size_t>(pair.edge_i);
-      hint.edge_j = static_cast<std::size_t>(pair.edge_j);
-      hint.reach_i = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[i]) + hint.edge_i];
-      hint.reach_j = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[j]) + hint.edge_j];
-      const auto geo = geometry::convex_overlap(pi, pj, ci, cj, g, hint);
-      pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
-      if (pair.overlapping) {
-        geometry_[p] = geo;
-        pair_state_[p] = PairState::overlapping;
-      }
-    }
+    for (std::size_t p = 0; p < pairs; ++p) candidates += test_pair(p, x, y, slack);
     // The list in pair order, the same whatever the thread count: each thread counts the overlapping pairs
     // of its block of pairs, then fills its block at the offset of the blocks before it.
     const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
@@ -275,37 +299,18 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
 #pragma omp single
     {
       std::int64_t total = 0, total_enclosed = 0, total_multi = 0;
-      for (std::size_t s = 0; s < nt; ++s) {
-        const std::int64_t c = block_count_[3 * s];
-        block_count_[3 * s] = total;  // now the block's offset
+      for (std::size_t b = 0; b < nt; ++b) {
+        const std::int64_t c = block_count_[3 * b];
+        block_count_[3 * b] = total;  // now the block's offset
         total += c;
-        total_enclosed += block_count_[3 * s + 1];
-        total_multi += block_count_[3 * s + 2];
+        total_enclosed += block_count_[3 * b + 1];
+        total_multi += block_count_[3 * b + 2];
       }
       out.resize(static_cast<std::size_t>(total));
       out.enclosed = total_enclosed;
       out.multi_crossing = total_multi;
     }
-    auto k = static_cast<std::size_t>(block_count_[3 * t]);
-    for (std::size_t p = first; p < last; ++p) {
-      if (pair_state_[p] != PairState::overlapping) {
-        contact_of_pair_[p] = -1;
-        continue;
-      }
-      const auto& geo = geometry_[p];
-      const auto& pair = neighbours_[p];
-      out.i[k] = pair.i;
-      out.j[k] = pair.j;
-      out.rx[k] = geo.point.x();
-      out.ry[k] = geo.point.y();
-      out.nx[k] = geo.normal.x();
-      out.ny[k] = geo.normal.y();
-      out.area[k] = geo.area;
-      out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
-      out.fn[k] = 0.0;
-      contact_of_pair_[p] = static_cast<std::int32_t>(k);
-      ++k;
-    }
+    fill_contacts(first, last, static_cast<std::size_t>(block_count_[3 * t]), out);
   }
   out.candidate_pairs = candidates;
   out.cell_start = cell_pair_start_;

@@ -89,6 +89,8 @@ class ContactSearch {
   std::vector<std::int32_t> sorted_;
   bool stale(std::span<const double> q) const;
   void rebuild(std::span<const double> q);
+  bool test_pair(std::size_t p, const double* x, const double* y, double slack);
+  void fill_contacts(std::size_t first, std::size_t last, std::size_t k, ContactList& out);
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when some
   // vertex may have moved by more than skin/2 since the last build (centroid displacement plus bounding
   // radius times rotation), so no pair can start to overlap unseen.
