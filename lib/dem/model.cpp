@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/finite.hpp"
+
 namespace frac::dem {
 
 std::string_view term_name(Term t) {
@@ -29,23 +31,6 @@ double LayerMotion::acceleration(double t) const {
   return t < ramp ? speed / ramp : 0;
 }
 
-namespace {
-// Whether every value is finite: x·0 is NaN for NaN and ±inf, 0 otherwise; four independent sums keep
-// the loop from waiting on one chain of additions.
-bool all_finite(std::span<const double> f) {
-  double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
-  std::size_t k = 0;
-  for (; k + 4 <= f.size(); k += 4) {
-    c0 += f[k] * 0.0;
-    c1 += f[k + 1] * 0.0;
-    c2 += f[k + 2] * 0.0;
-    c3 += f[k + 3] * 0.0;
-  }
-  for (; k < f.size(); ++k) c0 += f[k] * 0.0;
-  return c0 + c1 + c2 + c3 == 0.0;
-}
-}  // namespace
-
 Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics)
     : bodies_(make_bodies(mesh, material)),
       material_(material),
@@ -71,7 +56,12 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
 }
 
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
-  std::fill(force_.begin(), force_.end(), 0.0);
+  const std::size_t n = size();
+  double* force = force_.data();
+  // The per-coordinate loops run on the threads for a large model, split as the integrator splits its loops,
+  // so each thread finds the values where it left them.
+#pragma omp parallel for simd schedule(static) if (n >= kMinParallelArray)
+  for (std::size_t k = 0; k < n; ++k) force[k] = 0.0;
   power_.fill(0.0);
   const bool contact_list = physics_.contacts;
   if (contact_list) search_.find(q, contacts_);
@@ -96,8 +86,10 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       }
     }
   }
-  const std::size_t n = size();
-  for (std::size_t k = 0; k < n; ++k) a[k] = force_[k] * inv_mass_[k];
+  const double* inv_mass = inv_mass_.data();
+  double* acc = a.data();
+#pragma omp parallel for simd schedule(static) if (n >= kMinParallelArray)
+  for (std::size_t k = 0; k < n; ++k) acc[k] = force[k] * inv_mass[k];
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {
     const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/finite.hpp"
 
 namespace frac::dem {
 namespace {
@@ -30,12 +31,6 @@ std::string blame_non_finite(const Model& model, const dynamics::Integrator& in,
   }
   msg << "; the time step may be too large for this scene";
   return msg.str();
-}
-
-bool all_finite(std::span<const double> x) {
-  double s = 0;
-  for (double v : x) s += v * 0.0;  // NaN or ±inf make the product NaN
-  return s == 0.0;
 }
 
 }  // namespace
