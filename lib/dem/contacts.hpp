@@ -12,8 +12,9 @@
 // neighbour pairs (circle test, separating edges, overlap geometry) and the contact forces, each written
 // to its own slot; the list is then filled in pair order (each thread its block of pairs, at offsets from
 // the counts of the blocks before it), and each cell gathers its contacts' forces in contact order (through
-// a per-cell index of the neighbour pairs), so results do not depend on the thread count. The overlap of a pair gets a hint (geometry::OverlapHint): the cached
-// facing edges and their reaches, precomputed per cell edge, which leave out clip lines that cannot cut.
+// a per-cell index of the neighbour pairs), so results do not depend on the thread count. The overlap of a
+// pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell
+// edge, which leave out clip lines that cannot cut.
 #include <array>
 #include <cstdint>
 #include <span>
