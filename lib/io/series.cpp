@@ -51,7 +51,8 @@ void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type,
   H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
   Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
   if (H5Dwrite(d.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, data) < 0)
-    throw RuntimeError(g.where(name) + ": cannot write frames " + std::to_string(row) + " to " + std::to_string(row + rows - 1));
+    throw RuntimeError(g.where(name) + ": cannot write frames " + std::to_string(row) + " to " +
+                       std::to_string(row + rows - 1));
 }
 
 }  // namespace

@@ -394,7 +394,8 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
       powers[threads - 1][2] = frac::dem::contact_friction(list, p, bodies, s.q, s.v, f);
     }
     frac::set_threads(1);
-    for (std::size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(forces[0][k], forces[1][k]) << "seed " << seed << ", coordinate " << k;
+    for (std::size_t k = 0; k < 3 * n; ++k)
+      ASSERT_EQ(forces[0][k], forces[1][k]) << "seed " << seed << ", coordinate " << k;
     for (int t = 0; t < 3; ++t) EXPECT_EQ(powers[0][t], powers[1][t]) << "term " << t;
   }
 }
