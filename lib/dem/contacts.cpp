@@ -274,7 +274,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   }
   if (contact_of_pair_.size() < pairs) contact_of_pair_.resize(pairs + pairs / 4);
   const auto most = static_cast<std::size_t>(max_threads());
-  if (block_count_.size() < 3 * most + 3) block_count_.resize(3 * most + 3);
+  if (blocks_.size() < most) blocks_.resize(most);
   std::int64_t candidates = 0;
 #pragma omp parallel if (pairs > kMinParallelItems)
   {
@@ -285,32 +285,29 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     // of its block of pairs, then fills its block at the offset of the blocks before it.
     const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
     const std::size_t first = pairs * t / nt, last = pairs * (t + 1) / nt;
-    std::int64_t count = 0, enclosed = 0, multi = 0;
+    Block& block = blocks_[t];
+    block = Block{};
     for (std::size_t p = first; p < last; ++p) {
       if (pair_state_[p] != PairState::overlapping) continue;
-      ++count;
-      enclosed += geometry_[p].kind == geometry::ContactGeometry::Kind::enclosed;
-      multi += geometry_[p].distinct_crossings > 2;
+      ++block.count;
+      block.enclosed += geometry_[p].kind == geometry::ContactGeometry::Kind::enclosed;
+      block.multi_crossing += geometry_[p].distinct_crossings > 2;
     }
-    block_count_[3 * t] = count;
-    block_count_[3 * t + 1] = enclosed;
-    block_count_[3 * t + 2] = multi;
 #pragma omp barrier
 #pragma omp single
     {
-      std::int64_t total = 0, total_enclosed = 0, total_multi = 0;
+      std::int64_t total = 0, enclosed = 0, multi_crossing = 0;
       for (std::size_t b = 0; b < nt; ++b) {
-        const std::int64_t c = block_count_[3 * b];
-        block_count_[3 * b] = total;  // now the block's offset
-        total += c;
-        total_enclosed += block_count_[3 * b + 1];
-        total_multi += block_count_[3 * b + 2];
+        blocks_[b].offset = total;
+        total += blocks_[b].count;
+        enclosed += blocks_[b].enclosed;
+        multi_crossing += blocks_[b].multi_crossing;
       }
       out.resize(static_cast<std::size_t>(total));
-      out.enclosed = total_enclosed;
-      out.multi_crossing = total_multi;
+      out.enclosed = enclosed;
+      out.multi_crossing = multi_crossing;
     }
-    fill_contacts(first, last, static_cast<std::size_t>(block_count_[3 * t]), out);
+    fill_contacts(first, last, static_cast<std::size_t>(block.offset), out);
   }
   out.candidate_pairs = candidates;
   out.cell_start = cell_pair_start_;

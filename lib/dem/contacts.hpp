@@ -108,7 +108,11 @@ class ContactSearch {
   std::vector<std::int32_t> cell_pair_start_;  // cell c's pairs: cell_links_[start[c] .. start[c + 1])
   std::vector<CellLink> cell_links_;
   std::vector<std::int32_t> contact_of_pair_;  // per pair: its contact in the last list, or −1
-  std::vector<std::int64_t> block_count_;      // overlapping pairs per thread's block of pairs
+  struct Block {  // one thread's block of pairs in the list fill
+    std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
+    std::int64_t offset = 0;                                   // its first entry in the list
+  };
+  std::vector<Block> blocks_;
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)

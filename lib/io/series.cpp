@@ -83,10 +83,8 @@ void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, st
   }
   if (rows_per_chunk_ == 1) {
     // A frame fills a chunk: written at once, from the caller's memory (no copy of a large frame).
-    append_rows(group_, "step", step_, H5T_NATIVE_INT64, &step, written_, 1, {});
-    append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, &time, written_, 1, {});
-    append_rows(group_, "value", value_, mem_type, frame, written_, 1, frame_dims_);
-    written_ = ++frames_;
+    write_rows(&step, &time, frame, 1);
+    ++frames_;
     return;
   }
   step_buffer_.push_back(step);
@@ -97,13 +95,17 @@ void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, st
   if (frames_ - written_ >= rows_per_chunk_) flush();
 }
 
+void SeriesWriter::write_rows(const std::int64_t* step, const double* time, const void* values, std::size_t rows) {
+  append_rows(group_, "step", step_, H5T_NATIVE_INT64, step, written_, rows, {});
+  append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, time, written_, rows, {});
+  append_rows(group_, "value", value_, buffered_type_, values, written_, rows, frame_dims_);
+  written_ += rows;
+}
+
 void SeriesWriter::flush() {
   const std::size_t rows = frames_ - written_;
   if (rows == 0) return;
-  append_rows(group_, "step", step_, H5T_NATIVE_INT64, step_buffer_.data(), written_, rows, {});
-  append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, time_buffer_.data(), written_, rows, {});
-  append_rows(group_, "value", value_, buffered_type_, value_buffer_.data(), written_, rows, frame_dims_);
-  written_ = frames_;
+  write_rows(step_buffer_.data(), time_buffer_.data(), value_buffer_.data(), rows);
   step_buffer_.clear();
   time_buffer_.clear();
   value_buffer_.clear();

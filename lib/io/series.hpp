@@ -32,6 +32,8 @@ class SeriesWriter {
  private:
   void append_raw(std::int64_t step, double time, hid_t mem_type, std::size_t value_bytes, const void* frame,
                   std::size_t count);
+  // Writes `rows` frames (values of the buffered type) after the ones in the file.
+  void write_rows(const std::int64_t* step, const double* time, const void* values, std::size_t rows);
   Group group_;
   Hid step_, time_, value_;
   std::vector<hsize_t> frame_dims_;
