@@ -751,3 +751,72 @@ TEST(Overlap, HintGivesTheSameResultBitForBit) {
   }
   EXPECT_GT(overlapping, pairs / 3);
 }
+
+// The hinted path skips the shared-edge test when no near lines of the two cells are close to parallel with
+// the same orientation: cells whose sides are collinear (a straight outer boundary, stacked grid cells), turned
+// against each other by angles from 0 to well above the threshold of that shortcut (sin 1e-3), and moved as a
+// pair, give the same result bit for bit with and without the hint, shared runs included; so does an overlap
+// edge shorter than tol next to a crossing (shared by length, not by angle).
+TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
+  frac::Rng rng(5);
+  const Polygon base_i = rect(0, 0, 1, 1);
+  int shared_runs = 0;
+  for (const double turn : {0.0, 1e-13, 1e-10, 1e-7, 5e-4, 2e-3, 1e-2}) {
+    for (const Polygon& base_j : {rect(0.9, 0, 1, 1), rect(0.5, 0, 1, 1), rect(0, 0.99, 1, 1), rect(0.3, 0.999, 1, 1)}) {
+      for (int trial = 0; trial < 20; ++trial) {
+        // The pair turned and moved as a whole, then j turned by `turn` about the middle of the overlap.
+        const double angle = trial == 0 ? 0.0 : rng.uniform(-3, 3);
+        const Vec2 shift = trial == 0 ? Vec2::Zero() : Vec2(rng.uniform(-10, 10), rng.uniform(-10, 10));
+        const Vec2 pivot = 0.5 * (base_j[0] + base_i[2]);
+        const Polygon pi = moved(base_i, angle, Vec2::Zero(), shift);
+        const Polygon pj = moved(moved(base_j, turn, pivot, Vec2::Zero()), angle, Vec2::Zero(), shift);
+        const Vec2 ci = geo::centroid(pi), cj = geo::centroid(pj);
+        frac::geometry::OverlapHint hint;
+        hint.edge_i = geo::facing_edge(pi, cj - ci);
+        hint.edge_j = geo::facing_edge(pj, ci - cj);
+        hint.reach_i = geo::edge_reach(pi, hint.edge_i);
+        hint.reach_j = geo::edge_reach(pj, hint.edge_j);
+        const auto plain = convex_overlap(pi, pj, ci, cj, 1.0, hint.edge_j);
+        const auto fast = convex_overlap(pi, pj, ci, cj, 1.0, hint);
+        ASSERT_NE(plain.kind, Kind::none);
+        if (turn == 0.0 && trial == 0 && base_j[0].y() == 0.0) {
+          // Side by side: the crossings are the middles of the shared bottom and top runs [x0, 1].
+          const double mid = 0.5 * (base_j[0].x() + 1.0);
+          shared_runs += std::abs(plain.p1.x() - mid) < 1e-12 && std::abs(plain.p2.x() - mid) < 1e-12;
+        }
+        ASSERT_EQ(fast.kind, plain.kind) << "turn " << turn << " trial " << trial;
+        ASSERT_EQ(fast.area, plain.area);
+        ASSERT_EQ(fast.crossings, plain.crossings);
+        ASSERT_EQ(fast.distinct_crossings, plain.distinct_crossings);
+        for (const auto& [a, b] : {std::pair{fast.p1, plain.p1}, {fast.p2, plain.p2}, {fast.point, plain.point},
+                                   {fast.normal, plain.normal}}) {
+          ASSERT_EQ(a.x(), b.x()) << "turn " << turn << " trial " << trial;
+          ASSERT_EQ(a.y(), b.y()) << "turn " << turn << " trial " << trial;
+        }
+      }
+    }
+  }
+  // The unmoved side-by-side squares put their crossings at the middles of the shared runs.
+  EXPECT_EQ(shared_runs, 2);
+  // A corner of j 1e-12 inside i's right side: the overlap edge from it to the crossing is shorter than tol,
+  // which makes it shared whatever the angles (the crossing moves to the middle of that edge).
+  const Polygon pj = {Vec2(1 - 1e-6, 0.6), Vec2(1 - 1e-12, 0.3), Vec2(2.4, 0.25), Vec2(2.4, 0.65)};
+  const Vec2 ci = geo::centroid(base_i), cj = geo::centroid(pj);
+  frac::geometry::OverlapHint hint;
+  hint.edge_i = geo::facing_edge(base_i, cj - ci);
+  hint.edge_j = geo::facing_edge(pj, ci - cj);
+  hint.reach_i = geo::edge_reach(base_i, hint.edge_i);
+  hint.reach_j = geo::edge_reach(pj, hint.edge_j);
+  ASSERT_EQ(hint.edge_j, 0u);
+  ASSERT_GT(hint.reach_j, 1.0);  // the whole side of i that line 0 cuts off lies within it: the hinted path
+  const auto plain = convex_overlap(base_i, pj, ci, cj, 1.0, hint.edge_j);
+  const auto fast = convex_overlap(base_i, pj, ci, cj, 1.0, hint);
+  ASSERT_EQ(plain.kind, Kind::line);
+  EXPECT_EQ(fast.area, plain.area);
+  for (const auto& [a, b] : {std::pair{fast.p1, plain.p1}, {fast.p2, plain.p2}}) {
+    EXPECT_EQ(a.x(), b.x());
+    EXPECT_EQ(a.y(), b.y());
+  }
+  // The crossing is the middle of the short edge, half of 1e-12 in from the side.
+  EXPECT_EQ(std::min(plain.p1.x(), plain.p2.x()), 0.5 * ((1 - 1e-12) + 1.0));
+}
