@@ -147,40 +147,6 @@ bool within_reach(const Vec2* v, std::size_t count, std::span<const Vec2> p, std
   return inside;
 }
 
-// Whether no edge line among the three of P_i next to edge ci and the three of P_j next to edge cj (local
-// frame) is within an angle asin(kParallelSine) of parallel to one of the other polygon's with the same
-// orientation. Then an edge of the overlap that lies on one of these lines and is longer than
-// kSharedLengthFactor·tol cannot have both ends within tol of a line of the other polygon with the same
-// orientation: it is not shared (shared_edge would say no), and the test need not run. Two ends within tol of
-// a line b make |d_b × (v − u)| ≤ 2 tol |d_b|, while |d_b × (v − u)| ≥ |v − u| |d_b| (κ − ε) for an edge along
-// line a at sin∠(a, b) ≥ κ, with ε < 1e-8 the direction error of an edge that long from round-off of its
-// ends (~1e-15 of the cell size): 2.1·tol/κ > (2 tol + round-off)/(κ − ε). A line b with d_a · d_b < 0
-// and sin∠ < κ points the other way, and the test's orientation clause fails. (The near lines are the only
-// ones an edge of the overlap can lie on: within the reach of a facing edge, no point is on another line.)
-constexpr double kParallelSine = 1e-3;
-constexpr double kSharedLengthFactor = 2.1 / kParallelSine;
-bool near_lines_apart(std::span<const Vec2> pi, std::size_t ci, std::span<const Vec2> pj, std::size_t cj) {
-  auto directions = [](std::span<const Vec2> p, std::size_t c, std::array<Vec2, 3>& d) {
-    const std::size_t m = p.size();
-    const std::size_t c0 = c == 0 ? m - 1 : c - 1, c2 = c + 1 == m ? 0 : c + 1;
-    d[0] = p[c] - p[c0];
-    d[1] = p[c2] - p[c];
-    d[2] = p[c2 + 1 == m ? 0 : c2 + 1] - p[c2];
-  };
-  std::array<Vec2, 3> di, dj;
-  directions(pi, ci, di);
-  directions(pj, cj, dj);
-  constexpr double k2 = kParallelSine * kParallelSine;
-  bool apart = true;
-  for (const Vec2& a : di) {
-    for (const Vec2& b : dj) {
-      const double c = cross(a, b);
-      apart &= (a.dot(b) < 0.0) | (c * c >= k2 * a.squaredNorm() * b.squaredNorm());
-    }
-  }
-  return apart;
-}
-
 // n perpendicular to the contact line (p2 - p1 != 0), oriented from i toward j.
 Vec2 line_normal(const Vec2& p1, const Vec2& p2, const Vec2& dc) {
   const Vec2 t = p2 - p1;
@@ -275,15 +241,7 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   NearEdges near_edges_i, near_edges_j;
   const bool near_i = hint && hint->edge_i < n && hint->reach_i > 0.0 &&
                       within_reach(P.v.data(), K, si, hint->edge_i, hint->reach_i);
-  // When both overlaps lie within the reach of the facing edges and no near lines are close to parallel, an
-  // edge longer than kSharedLengthFactor·tol is not shared (near_lines_apart): no lines to test.
-  const bool lines_apart = near_i && near_j && near_lines_apart(si, hint->edge_i, sj, first);
-  const double long_edge2 = kSharedLengthFactor * kSharedLengthFactor * tol2;
   auto shared = [&](std::size_t e) {
-    if (lines_apart) {
-      const std::size_t e1 = e + 1 == K ? 0 : e + 1;
-      if ((P.v[e1] - P.v[e]).squaredNorm() > long_edge2) return false;
-    }
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
       const Vec2& v = P.v[e + 1 == K ? 0 : e + 1];

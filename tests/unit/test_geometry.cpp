@@ -752,11 +752,10 @@ TEST(Overlap, HintGivesTheSameResultBitForBit) {
   EXPECT_GT(overlapping, pairs / 3);
 }
 
-// The hinted path skips the shared-edge test when no near lines of the two cells are close to parallel with
-// the same orientation: cells whose sides are collinear (a straight outer boundary, stacked grid cells), turned
-// against each other by angles from 0 to well above the threshold of that shortcut (sin 1e-3), and moved as a
-// pair, give the same result bit for bit with and without the hint, shared runs included; so does an overlap
-// edge shorter than tol next to a crossing (shared by length, not by angle).
+// The hinted path tests shared edges against the three lines next to each facing edge only: cells whose sides
+// are collinear (a straight outer boundary, stacked grid cells), turned against each other by angles from 0
+// to 1e-2, and moved as a pair, give the same result bit for bit with and without the hint, shared runs
+// included; so does an overlap edge shorter than tol next to a crossing (shared by its length).
 TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
   frac::Rng rng(5);
   const Polygon base_i = rect(0, 0, 1, 1);
