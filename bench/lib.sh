@@ -9,13 +9,16 @@ require_gnu_time() {
 }
 
 # time_once COMMAND...: runs COMMAND once (its output discarded) and prints "WALL CPU" in seconds, CPU =
-# user + system. On failure prints the command's standard error and stops the script. Scratch files are
+# user + system (GNU time: 10 ms resolution), WALL from the shell's clock (microseconds: short runs are
+# differenced). On failure prints the command's standard error and stops the script. Scratch files are
 # per process, so two benchmarks may share $out.
 time_once() {
-  local tf="$out/time.$$.txt" ef="$out/stderr.$$.txt"
-  /usr/bin/time -f "%e %U %S" -o "$tf" "$@" >/dev/null 2>"$ef" ||
+  local tf="$out/time.$$.txt" ef="$out/stderr.$$.txt" t0 t1
+  t0=$EPOCHREALTIME
+  /usr/bin/time -f "%U %S" -o "$tf" "$@" >/dev/null 2>"$ef" ||
     { echo "bench: failed: $*" >&2; cat "$ef" >&2; rm -f "$tf" "$ef"; exit 1; }
-  awk '{ printf "%s %.2f\n", $1, $2 + $3 }' "$tf"
+  t1=$EPOCHREALTIME
+  awk -v t0="$t0" -v t1="$t1" '{ printf "%.4f %.2f\n", t1 - t0, $1 + $2 }' "$tf"
   rm -f "$tf" "$ef"
 }
 
