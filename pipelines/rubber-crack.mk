@@ -33,12 +33,25 @@ RC_OPT_weight-uc10 := --law.three_body_weight all_bonds --law.cutoff_length 3.16
 RC_OPT_weight-soft := $(RC_SOFT) --law.three_body_weight all_bonds
 RC_OPT_weight-ramp := --law.three_body_weight all_bonds --loading.stretch_y 3.5 --loading.ramp_from_y 2 \
                       --loading.ramp_time 1e-3 --law.cutoff_length 3.874e-3 --toughening.cutoff 5e-3
+# The pair law alone (material.b = 0: Mooney-Rivlin with b = 0, so c_T = c_L) with the far field 0.134Δ below
+# u_c (about 5 %), irreversible: a rupture runs. The same with a small three-body term, b = 0.1 and 0.25: its
+# cut-off 0.008Δ wide (u_c 17 widths above the far field, which then stays Mooney-Rivlin), a bond marked broken
+# only 20 widths past u_c (where h ≈ 2e-9: cutting it earlier, mid-cut-off, makes the energy jump by 2-4 %),
+# and a smaller step.
+RC_PAIR := --physics.irreversible on --law.cutoff_length 2.8e-3
+RC_OPT_pair-only := $(RC_PAIR) --material.b 0 --breaking.extra_widths 0.2 --integrator.safety 0.2
+RC_THREE_BODY := $(RC_PAIR) --law.cutoff_width 8e-6 --breaking.extra_widths 20 --integrator.safety 0.1
+RC_OPT_three-body-0.1 := $(RC_THREE_BODY) --material.b 0.1
+RC_OPT_three-body-0.25 := $(RC_THREE_BODY) --material.b 0.25
 RC_LEVERS ?= $(if $(MINI),paper weight,paper irreversible damped near-failure toughened c1 kick soft soft-all weight \
-             weight-uc10 weight-soft weight-ramp)
+             weight-uc10 weight-soft weight-ramp pair-only three-body-0.1 three-body-0.25)
 # The stretch across the crack, with the softening law placed 0.02Δ + L above each far field.
 RC_STRETCHES ?= $(if $(MINI),3,2.5 3 3.5)
+# The pair law alone across stretches, u_c 0.134Δ above each far field.
+RC_PAIR_STRETCHES ?= $(if $(MINI),,2 2.5 3.5)
 
-RC_RUNS := $(foreach l,$(RC_LEVERS),$(RC)/lever-$(l).h5) $(foreach s,$(RC_STRETCHES),$(RC)/stretch-$(s).h5)
+RC_RUNS := $(foreach l,$(RC_LEVERS),$(RC)/lever-$(l).h5) $(foreach s,$(RC_STRETCHES),$(RC)/stretch-$(s).h5) \
+           $(foreach s,$(RC_PAIR_STRETCHES),$(RC)/pair-stretch-$(s).h5)
 
 .PHONY: rubber-crack
 rubber-crack: $(RC)/table.md $(RC)/snapshot.png
@@ -56,6 +69,13 @@ $(RC)/stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run stretch_y $*"
 	uc=$$(awk -v l=$* 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.12) }'); \
 	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_SOFT) --loading.stretch_y $* \
+	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
+
+$(RC)/pair-stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
+	@echo "rubber-run pair law, stretch_y $*"
+	uc=$$(awk -v l=$* 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.134) }'); \
+	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) --physics.irreversible on \
+	  --breaking.extra_widths 0.2 --material.b 0 --integrator.safety 0.2 --loading.stretch_y $* \
 	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
 
 # One row per run: advance of the tip, speed over the last part of the advance (at least 20Δ of it, after the
