@@ -696,6 +696,32 @@ TEST(Overlap, EdgeReachKeepsPointsInsideTheOtherEdges) {
             std::numeric_limits<double>::infinity());
 }
 
+namespace {
+
+// Whether two contact geometries agree in every field, bit for bit.
+::testing::AssertionResult same_bits(const ContactGeometry& a, const ContactGeometry& b) {
+  if (a.kind != b.kind || a.area != b.area || a.crossings != b.crossings || a.distinct_crossings != b.distinct_crossings)
+    return ::testing::AssertionFailure() << "kind, area or crossings differ: area " << a.area << " against " << b.area;
+  for (const auto& [u, v] : {std::pair{a.p1, b.p1}, {a.p2, b.p2}, {a.point, b.point}, {a.normal, b.normal}}) {
+    if (u.x() != v.x() || u.y() != v.y())
+      return ::testing::AssertionFailure() << "(" << u.x() << ", " << u.y() << ") against (" << v.x() << ", " << v.y() << ")";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The contact search's hint for two polygons: the edges facing each other's centroid and their reaches.
+frac::geometry::OverlapHint facing_hint(const Polygon& pi, const Polygon& pj) {
+  const Vec2 ci = geo::centroid(pi), cj = geo::centroid(pj);
+  frac::geometry::OverlapHint hint;
+  hint.edge_i = geo::facing_edge(pi, cj - ci);
+  hint.edge_j = geo::facing_edge(pj, ci - cj);
+  hint.reach_i = geo::edge_reach(pi, hint.edge_i);
+  hint.reach_j = geo::edge_reach(pj, hint.edge_j);
+  return hint;
+}
+
+}  // namespace
+
 // The hint of the contact search (facing edges and their reaches) changes the work, not the result:
 // every field bit for bit, for cells of a random lattice moved apart, into slivers and into deep
 // overlaps, with the facing edges and with edges that face away.
@@ -737,15 +763,7 @@ TEST(Overlap, HintGivesTheSameResultBitForBit) {
         const auto fast = convex_overlap(world[i], world[j], centre[i], centre[j], g, hint);
         ++pairs;
         overlapping += plain.kind != Kind::none;
-        ASSERT_EQ(fast.kind, plain.kind);
-        ASSERT_EQ(fast.area, plain.area);
-        ASSERT_EQ(fast.crossings, plain.crossings);
-        ASSERT_EQ(fast.distinct_crossings, plain.distinct_crossings);
-        for (const auto& [a, b] : {std::pair{fast.p1, plain.p1}, {fast.p2, plain.p2}, {fast.point, plain.point},
-                                   {fast.normal, plain.normal}}) {
-          ASSERT_EQ(a.x(), b.x());
-          ASSERT_EQ(a.y(), b.y());
-        }
+        ASSERT_TRUE(same_bits(fast, plain));
       }
     }
   }
@@ -770,11 +788,7 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
         const Polygon pi = moved(base_i, angle, Vec2::Zero(), shift);
         const Polygon pj = moved(moved(base_j, turn, pivot, Vec2::Zero()), angle, Vec2::Zero(), shift);
         const Vec2 ci = geo::centroid(pi), cj = geo::centroid(pj);
-        frac::geometry::OverlapHint hint;
-        hint.edge_i = geo::facing_edge(pi, cj - ci);
-        hint.edge_j = geo::facing_edge(pj, ci - cj);
-        hint.reach_i = geo::edge_reach(pi, hint.edge_i);
-        hint.reach_j = geo::edge_reach(pj, hint.edge_j);
+        const auto hint = facing_hint(pi, pj);
         const auto plain = convex_overlap(pi, pj, ci, cj, 1.0, hint.edge_j);
         const auto fast = convex_overlap(pi, pj, ci, cj, 1.0, hint);
         ASSERT_NE(plain.kind, Kind::none);
@@ -783,15 +797,7 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
           const double mid = 0.5 * (base_j[0].x() + 1.0);
           shared_runs += std::abs(plain.p1.x() - mid) < 1e-12 && std::abs(plain.p2.x() - mid) < 1e-12;
         }
-        ASSERT_EQ(fast.kind, plain.kind) << "turn " << turn << " trial " << trial;
-        ASSERT_EQ(fast.area, plain.area);
-        ASSERT_EQ(fast.crossings, plain.crossings);
-        ASSERT_EQ(fast.distinct_crossings, plain.distinct_crossings);
-        for (const auto& [a, b] : {std::pair{fast.p1, plain.p1}, {fast.p2, plain.p2}, {fast.point, plain.point},
-                                   {fast.normal, plain.normal}}) {
-          ASSERT_EQ(a.x(), b.x()) << "turn " << turn << " trial " << trial;
-          ASSERT_EQ(a.y(), b.y()) << "turn " << turn << " trial " << trial;
-        }
+        ASSERT_TRUE(same_bits(fast, plain)) << "turn " << turn << " trial " << trial;
       }
     }
   }
@@ -801,21 +807,13 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
   // which makes it shared whatever the angles (the crossing moves to the middle of that edge).
   const Polygon pj = {Vec2(1 - 1e-6, 0.6), Vec2(1 - 1e-12, 0.3), Vec2(2.4, 0.25), Vec2(2.4, 0.65)};
   const Vec2 ci = geo::centroid(base_i), cj = geo::centroid(pj);
-  frac::geometry::OverlapHint hint;
-  hint.edge_i = geo::facing_edge(base_i, cj - ci);
-  hint.edge_j = geo::facing_edge(pj, ci - cj);
-  hint.reach_i = geo::edge_reach(base_i, hint.edge_i);
-  hint.reach_j = geo::edge_reach(pj, hint.edge_j);
+  const auto hint = facing_hint(base_i, pj);
   ASSERT_EQ(hint.edge_j, 0u);
   ASSERT_GT(hint.reach_j, 1.0);  // the whole side of i that line 0 cuts off lies within it: the hinted path
   const auto plain = convex_overlap(base_i, pj, ci, cj, 1.0, hint.edge_j);
   const auto fast = convex_overlap(base_i, pj, ci, cj, 1.0, hint);
   ASSERT_EQ(plain.kind, Kind::line);
-  EXPECT_EQ(fast.area, plain.area);
-  for (const auto& [a, b] : {std::pair{fast.p1, plain.p1}, {fast.p2, plain.p2}}) {
-    EXPECT_EQ(a.x(), b.x());
-    EXPECT_EQ(a.y(), b.y());
-  }
+  EXPECT_TRUE(same_bits(fast, plain));
   // The crossing is the middle of the short edge, half of 1e-12 in from the side.
   EXPECT_EQ(std::min(plain.p1.x(), plain.p2.x()), 0.5 * ((1 - 1e-12) + 1.0));
 }
