@@ -34,17 +34,20 @@ RC_OPT_weight-soft := $(RC_SOFT) --law.three_body_weight all_bonds
 RC_OPT_weight-ramp := --law.three_body_weight all_bonds --loading.stretch_y 3.5 --loading.ramp_from_y 2 \
                       --loading.ramp_time 1e-3 --law.cutoff_length 3.874e-3 --toughening.cutoff 5e-3
 # The pair law alone (material.b = 0: Mooney-Rivlin with b = 0, so c_T = c_L) with the far field 0.134Δ below
-# u_c (about 5 %), irreversible: a rupture runs. The same with a small three-body term, b = 0.1 and 0.25: its
+# u_c (about 5 %), irreversible: a rupture runs. The same with a small three-body term, b = 0.02 to 0.25: its
 # cut-off 0.008Δ wide (u_c 17 widths above the far field, which then stays Mooney-Rivlin), a bond marked broken
 # only 20 widths past u_c (where h ≈ 2e-9: cutting it earlier, mid-cut-off, makes the energy jump by 2-4 %),
 # and a smaller step.
 RC_PAIR := --physics.irreversible on --law.cutoff_length 2.8e-3
 RC_OPT_pair-only := $(RC_PAIR) --material.b 0 --breaking.extra_widths 0.2 --integrator.safety 0.2
 RC_THREE_BODY := $(RC_PAIR) --law.cutoff_width 8e-6 --breaking.extra_widths 20 --integrator.safety 0.1
+RC_OPT_three-body-0.02 := $(RC_THREE_BODY) --material.b 0.02
+RC_OPT_three-body-0.05 := $(RC_THREE_BODY) --material.b 0.05
 RC_OPT_three-body-0.1 := $(RC_THREE_BODY) --material.b 0.1
 RC_OPT_three-body-0.25 := $(RC_THREE_BODY) --material.b 0.25
 RC_LEVERS ?= $(if $(MINI),paper weight,paper irreversible damped near-failure toughened c1 kick soft soft-all weight \
-             weight-uc10 weight-soft weight-ramp pair-only three-body-0.1 three-body-0.25)
+             weight-uc10 weight-soft weight-ramp pair-only three-body-0.02 three-body-0.05 three-body-0.1 \
+             three-body-0.25)
 # The stretch across the crack, with the softening law placed 0.02Δ + L above each far field.
 RC_STRETCHES ?= $(if $(MINI),3,2.5 3 3.5)
 # The pair law alone across stretches, u_c 0.134Δ above each far field.
