@@ -38,9 +38,10 @@ RC_OPT_weight-ramp := --law.three_body_weight all_bonds --loading.stretch_y 3.5 
 # cut-off 0.008Δ wide (u_c 17 widths above the far field, which then stays Mooney-Rivlin), a bond marked broken
 # only 20 widths past u_c (where h ≈ 2e-9: cutting it earlier, mid-cut-off, makes the energy jump by 2-4 %),
 # and a smaller step.
-RC_PAIR := --physics.irreversible on --law.cutoff_length 2.8e-3
-RC_OPT_pair-only := $(RC_PAIR) --material.b 0 --breaking.extra_widths 0.2 --integrator.safety 0.2
-RC_THREE_BODY := $(RC_PAIR) --law.cutoff_width 8e-6 --breaking.extra_widths 20 --integrator.safety 0.1
+RC_PAIR_LAW := --physics.irreversible on --material.b 0 --breaking.extra_widths 0.2 --integrator.safety 0.2
+RC_OPT_pair-only := $(RC_PAIR_LAW) --law.cutoff_length 2.8e-3
+RC_THREE_BODY := --physics.irreversible on --law.cutoff_length 2.8e-3 --law.cutoff_width 8e-6 \
+                 --breaking.extra_widths 20 --integrator.safety 0.1
 RC_OPT_three-body-0.02 := $(RC_THREE_BODY) --material.b 0.02
 RC_OPT_three-body-0.05 := $(RC_THREE_BODY) --material.b 0.05
 RC_OPT_three-body-0.1 := $(RC_THREE_BODY) --material.b 0.1
@@ -77,8 +78,7 @@ $(RC)/stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 $(RC)/pair-stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run pair law, stretch_y $*"
 	uc=$$(awk -v l=$* 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.134) }'); \
-	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) --physics.irreversible on \
-	  --breaking.extra_widths 0.2 --material.b 0 --integrator.safety 0.2 --loading.stretch_y $* \
+	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_PAIR_LAW) --loading.stretch_y $* \
 	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
 
 # One row per run: advance of the tip, speed over the last part of the advance (at least 20Δ of it, after the
