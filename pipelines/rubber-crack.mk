@@ -69,17 +69,19 @@ $(RC)/lever-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run lever $*"
 	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_OPT_$*) -o $@ 2> $(@:.h5=.log)
 
+# rc_stretch_run,STRETCH_Y,OFFSET,LAW: a run at λy = STRETCH_Y with u_c OFFSET spacings above the far-field
+# length of the 60° bonds, √(0.36 + 0.75 λy²) Δ at λx = 1.2 (Δ = 1 mm), and the law options LAW.
+rc_stretch_run = uc=$$(awk -v l=$(1) -v o=$(2) 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + o) }'); \
+	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(3) --loading.stretch_y $(1) \
+	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
+
 $(RC)/stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run stretch_y $*"
-	uc=$$(awk -v l=$* 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.12) }'); \
-	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_SOFT) --loading.stretch_y $* \
-	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
+	$(call rc_stretch_run,$*,0.12,$(RC_SOFT))
 
 $(RC)/pair-stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run pair law, stretch_y $*"
-	uc=$$(awk -v l=$* 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.134) }'); \
-	$(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) $< $(RC_COMMON) $(RC_PAIR_LAW) --loading.stretch_y $* \
-	  --law.cutoff_length $$uc -o $@ 2> $(@:.h5=.log)
+	$(call rc_stretch_run,$*,0.134,$(RC_PAIR_LAW))
 
 # One row per run: advance of the tip, speed over the last part of the advance (at least 20Δ of it, after the
 # first 20Δ), the lattice's wave speeds, the energy change and the bonds past u_c.
