@@ -1,26 +1,32 @@
 #include "core/finite.hpp"
 
-namespace frac {
+#include "core/parallel.hpp"
 
-bool all_finite(std::span<const double> x) {
-  const double* p = x.data();
-  const std::size_t n = x.size();
-  if (n >= kMinParallelArray) {
-    double s = 0;
-#pragma omp parallel for simd schedule(static) reduction(+ : s)
-    for (std::size_t k = 0; k < n; ++k) s += p[k] * 0.0;
-    return s == 0.0;
-  }
+namespace frac {
+namespace {
+// Σ p[k]·0 over [first, last), in four independent sums.
+double zero_sum(const double* p, std::size_t first, std::size_t last) {
   double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
-  std::size_t k = 0;
-  for (; k + 4 <= n; k += 4) {
+  std::size_t k = first;
+  for (; k + 4 <= last; k += 4) {
     c0 += p[k] * 0.0;
     c1 += p[k + 1] * 0.0;
     c2 += p[k + 2] * 0.0;
     c3 += p[k + 3] * 0.0;
   }
-  for (; k < n; ++k) c0 += p[k] * 0.0;
-  return c0 + c1 + c2 + c3 == 0.0;
+  for (; k < last; ++k) c0 += p[k] * 0.0;
+  return c0 + c1 + c2 + c3;
+}
+}  // namespace
+
+bool all_finite(std::span<const double> x, std::size_t blocks) {
+  const double* p = x.data();
+  const std::size_t n = x.size();
+  if (n <= kMinParallelCoordinates) return zero_sum(p, 0, n) == 0.0;
+  double s = 0;
+#pragma omp parallel reduction(+ : s)
+  this_thread_coordinate_ranges(n, blocks, [&](std::size_t first, std::size_t last) { s += zero_sum(p, first, last); });
+  return s == 0.0;
 }
 
 }  // namespace frac

@@ -1,16 +1,14 @@
 #pragma once
 // Whether every value of an array is finite, the check a run makes on forces and states every step. x·0 is
 // NaN for NaN and ±inf and 0 otherwise, so the sum of x·0 is 0 exactly when all are finite, in any order:
-// large arrays are summed by the threads (each its block, as the integrator's loops split them, so the
-// values are read where they were written), small ones by one thread with four independent sums.
+// an array of coordinates laid out in `blocks` equal blocks is summed by the threads as the integrator's
+// loops split it (for_coordinate_ranges, core/parallel.hpp), so the values are read where they were
+// written; a short one by one thread with four independent sums.
+#include <cstddef>
 #include <span>
 
 namespace frac {
 
-bool all_finite(std::span<const double> x);
-
-// Arrays at least this long are checked (and the model's per-coordinate loops run) by the threads; below,
-// the fork and join cost more than the loop.
-inline constexpr std::size_t kMinParallelArray = 16384;
+bool all_finite(std::span<const double> x, std::size_t blocks = 1);
 
 }  // namespace frac

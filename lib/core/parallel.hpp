@@ -8,6 +8,10 @@ namespace frac {
 
 inline constexpr std::size_t kMinParallelItems = 256;
 
+// The per-coordinate loops of a step (the integrator's, the force reset and the accelerations, the
+// finiteness checks) are light: threads pay off from about a thousand coordinates.
+inline constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
+
 // OpenMP's thread queries, for code that splits work by hand.
 int max_threads();
 int thread_count();  // threads of the enclosing parallel region
@@ -15,5 +19,42 @@ int thread_index();  // this thread's number in it
 
 // Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0.
 void set_threads(int requested);
+
+// Thread t's part [first, last) of `items` under a static schedule of nt threads, as OpenMP's
+// schedule(static) deals them out in GCC's libgomp: contiguous parts, the first items % nt one item longer.
+struct Range {
+  std::size_t first, last;
+};
+inline Range static_range(std::size_t items, std::size_t t, std::size_t nt) {
+  const std::size_t q = items / nt, longer = items % nt;
+  const std::size_t first = t < longer ? t * (q + 1) : longer * (q + 1) + (t - longer) * q;
+  return {first, first + (t < longer ? q + 1 : q)};
+}
+
+// The per-coordinate loops over n = blocks·len coordinates laid out in `blocks` equal blocks (the DEM: x of
+// every cell, then y, then φ) split them so that thread t takes the same part of every block,
+// static_range(len, t, nt): the cells the per-cell loops of the forces (schedule(static)) give it, so each
+// thread reads the values it wrote, in its own cache, instead of the other thread's. Element by element
+// work gives the same bits whatever the split. (blocks = 0, or n not a multiple of it: one block.)
+// Inside a parallel region: calls range(first, last) on this thread's part of every block.
+template <class Body>
+void this_thread_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
+  if (blocks == 0 || n % blocks != 0) blocks = 1;
+  const std::size_t len = n / blocks;
+  const Range r = static_range(len, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
+  for (std::size_t b = 0; b < blocks; ++b) range(b * len + r.first, b * len + r.last);
+}
+
+// A per-coordinate loop: range(first, last) on contiguous ranges that cover [0, n) once, split among the
+// threads as above when n is above kMinParallelCoordinates, in one call otherwise.
+template <class Body>
+void for_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
+  if (n <= kMinParallelCoordinates) {
+    range(std::size_t{0}, n);
+    return;
+  }
+#pragma omp parallel
+  this_thread_coordinate_ranges(n, blocks, range);
+}
 
 }  // namespace frac

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/finite.hpp"
+#include "core/parallel.hpp"
 
 namespace frac::dem {
 
@@ -58,10 +59,12 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
   const std::size_t n = size();
   double* force = force_.data();
-  // The per-coordinate loops run on the threads for a large model, split as the integrator splits its loops,
-  // so each thread finds the values where it left them.
-#pragma omp parallel for simd schedule(static) if (n >= kMinParallelArray)
-  for (std::size_t k = 0; k < n; ++k) force[k] = 0.0;
+  // The per-coordinate loops run on the threads split as the integrator's and the per-cell loops split
+  // them (for_coordinate_ranges), so each thread finds the values where it left them.
+  for_coordinate_ranges(n, 3, [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+    for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
+  });
   power_.fill(0.0);
   const bool contact_list = physics_.contacts;
   if (contact_list) search_.find(q, contacts_);
@@ -76,7 +79,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       default: break;
     }
     if (non_finite_term_ == Term::count) {
-      if (!all_finite(force_)) {
+      if (!all_finite(force_, 3)) {
         non_finite_term_ = term;
         for (std::size_t i = 0; i < force_.size(); ++i)
           if (!std::isfinite(force_[i])) {
@@ -88,8 +91,10 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   }
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();
-#pragma omp parallel for simd schedule(static) if (n >= kMinParallelArray)
-  for (std::size_t k = 0; k < n; ++k) acc[k] = force[k] * inv_mass[k];
+  for_coordinate_ranges(n, 3, [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+    for (std::size_t k = first; k < last; ++k) acc[k] = force[k] * inv_mass[k];
+  });
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {
     const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];

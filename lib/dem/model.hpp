@@ -43,6 +43,7 @@ class Model final : public dynamics::System {
 
   // dynamics::System
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  std::size_t coordinate_blocks() const override { return 3; }  // x, y, φ of every cell
   std::span<const std::size_t> prescribed() const override { return prescribed_index_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
 

@@ -11,10 +11,9 @@
 namespace frac::dynamics {
 
 namespace {
-// The step loops are element by element (the same bits on any number of threads) and light: threads
-// pay off from about a thousand coordinates. (rubber-run runs its own thread pool and keeps OpenMP to one
-// thread, so these loops stay serial there.)
-constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
+// The step loops are element by element (the same bits on any number of threads) and light: they run on
+// the threads from kMinParallelCoordinates on, split as the model splits its cells (for_coordinate_ranges).
+// (rubber-run runs its own thread pool and keeps OpenMP to one thread, so these loops stay serial there.)
 }  // namespace
 
 IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option) {
@@ -245,32 +244,38 @@ void Gear5::step(System& system) {
   const double* r5 = r_[5].data();
   const double inv_dt = 1.0 / dt_;
   // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders.
-#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
-  for (std::size_t i = 0; i < n_; ++i) {
-    r0[i] += r1[i] + r2[i] + r3[i] + r4[i] + r5[i];
-    r1[i] += 2 * r2[i] + 3 * r3[i] + 4 * r4[i] + 5 * r5[i];
-    r2[i] += 3 * r3[i] + 6 * r4[i] + 10 * r5[i];
-    r3[i] += 4 * r4[i] + 10 * r5[i];
-    r4[i] += 5 * r5[i];
-    v_[i] = r1[i] * inv_dt;
-  }
+  double* v = v_.data();
+  for_coordinate_ranges(n_, system.coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+    for (std::size_t i = first; i < last; ++i) {
+      r0[i] += r1[i] + r2[i] + r3[i] + r4[i] + r5[i];
+      r1[i] += 2 * r2[i] + 3 * r3[i] + 4 * r4[i] + 5 * r5[i];
+      r2[i] += 3 * r3[i] + 6 * r4[i] + 10 * r5[i];
+      r3[i] += 4 * r4[i] + 10 * r5[i];
+      r4[i] += 5 * r5[i];
+      v[i] = r1[i] * inv_dt;
+    }
+  });
   t_ += dt_;
   apply_prescribed(system, t_);
   system.accelerations(t_, r_[0], v_, a_);
   // Corrector.
   const double half_dt2 = 0.5 * dt_ * dt_;
   double* r5w = r_[5].data();
-#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
-  for (std::size_t i = 0; i < n_; ++i) {
-    const double delta = half_dt2 * a_[i] - r2[i];
-    r0[i] += kGearC[0] * delta;
-    r1[i] += kGearC[1] * delta;
-    r2[i] += kGearC[2] * delta;
-    r3[i] += kGearC[3] * delta;
-    r4[i] += kGearC[4] * delta;
-    r5w[i] += kGearC[5] * delta;
-    v_[i] = r1[i] * inv_dt;
-  }
+  const double* a = a_.data();
+  for_coordinate_ranges(n_, system.coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+    for (std::size_t i = first; i < last; ++i) {
+      const double delta = half_dt2 * a[i] - r2[i];
+      r0[i] += kGearC[0] * delta;
+      r1[i] += kGearC[1] * delta;
+      r2[i] += kGearC[2] * delta;
+      r3[i] += kGearC[3] * delta;
+      r4[i] += kGearC[4] * delta;
+      r5w[i] += kGearC[5] * delta;
+      v[i] = r1[i] * inv_dt;
+    }
+  });
   apply_prescribed(system, t_);
   ++steps_;
 }
@@ -293,17 +298,27 @@ void VelocityVerlet::start(System& system, double t0, double dt, std::span<const
 
 void VelocityVerlet::step(System& system) {
   const double h = 0.5 * dt_;
-#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
-  for (std::size_t i = 0; i < n_; ++i) {
-    v_[i] += h * a_[i];        // half kick
-    q_[i] += dt_ * v_[i];      // drift
-    v_est_[i] = v_[i] + h * a_[i];  // velocity estimate at the new time for velocity-dependent forces
-  }
+  double* q = q_.data();
+  double* v = v_.data();
+  double* v_est = v_est_.data();
+  const double* a = a_.data();
+  const double dt = dt_;
+  const std::size_t blocks = system.coordinate_blocks();
+  for_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+    for (std::size_t i = first; i < last; ++i) {
+      v[i] += h * a[i];            // half kick
+      q[i] += dt * v[i];           // drift
+      v_est[i] = v[i] + h * a[i];  // velocity estimate at the new time for velocity-dependent forces
+    }
+  });
   t_ += dt_;
   system.prescribe(t_, q_, v_est_, a_);
   system.accelerations(t_, q_, v_est_, a_);
-#pragma omp parallel for simd schedule(static) if (n_ > kMinParallelCoordinates)
-  for (std::size_t i = 0; i < n_; ++i) v_[i] += h * a_[i];  // half kick
+  for_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+    for (std::size_t i = first; i < last; ++i) v[i] += h * a[i];  // half kick
+  });
   const auto fixed = system.prescribed();
   if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
   ++steps_;

@@ -26,6 +26,10 @@ class System {
   // The coordinates this system prescribes, and their values at time t (written into q, v, a at those
   // indices only). The default prescribes nothing.
   virtual std::span<const std::size_t> prescribed() const { return {}; }
+  // The coordinates form this many equal blocks, one per component (the DEM: 3, x, y and φ of every
+  // cell). The integrator's loops give each thread the same part of every block (for_coordinate_ranges,
+  // core/parallel.hpp), the part of the cells the model's per-cell loops give it.
+  virtual std::size_t coordinate_blocks() const { return 1; }
   virtual void prescribe(double /*t*/, std::span<double> /*q*/, std::span<double> /*v*/,
                          std::span<double> /*a*/) const {}
 };

@@ -1,0 +1,78 @@
+// The split of the per-coordinate loops among threads (core/parallel.hpp) and the finiteness check that
+// uses it (core/finite.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/finite.hpp"
+#include "core/parallel.hpp"
+
+namespace {
+
+// static_range deals out what OpenMP's schedule(static) deals out: the per-cell force loops and the
+// per-coordinate loops must give a thread the same cells.
+TEST(Parallel, StaticRangeMatchesOpenMPStaticSchedule) {
+  for (const int threads : {1, 2, 3, 4}) {
+    for (const std::size_t items : {0u, 1u, 2u, 5u, 7u, 1100u, 1103u}) {
+      std::vector<int> owner(items, -1);
+#pragma omp parallel for schedule(static) num_threads(threads)
+      for (std::size_t k = 0; k < items; ++k) owner[k] = frac::thread_index();
+      for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t) {
+        const frac::Range r = frac::static_range(items, t, static_cast<std::size_t>(threads));
+        for (std::size_t k = 0; k < items; ++k)
+          EXPECT_EQ(owner[k] == static_cast<int>(t), k >= r.first && k < r.last)
+              << items << " items, " << threads << " threads, item " << k << ", thread " << t;
+      }
+    }
+  }
+}
+
+// Every coordinate is visited once, and on two threads each thread takes the same cells in every block.
+TEST(Parallel, CoordinateRangesCoverEveryCoordinateOnceAlignedWithTheCells) {
+  const int before = frac::max_threads();
+  for (const int threads : {1, 2, 3}) {
+    frac::set_threads(threads);
+    for (const std::size_t cells : {5u, 1100u, 1103u, 4000u}) {
+      for (const std::size_t blocks : {1u, 3u}) {
+        const std::size_t n = cells * blocks;
+        std::vector<int> visits(n, 0), owner(n, -1);
+        frac::for_coordinate_ranges(n, blocks, [&](std::size_t first, std::size_t last) {
+          for (std::size_t i = first; i < last; ++i) {
+            ++visits[i];
+            owner[i] = frac::thread_index();
+          }
+        });
+        for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(visits[i], 1) << n << " coordinates, index " << i;
+        if (n <= frac::kMinParallelCoordinates) continue;  // one call on the calling thread
+        for (std::size_t b = 1; b < blocks; ++b)
+          for (std::size_t c = 0; c < cells; ++c) EXPECT_EQ(owner[b * cells + c], owner[c]) << "cell " << c;
+      }
+    }
+  }
+  frac::set_threads(before);
+}
+
+// A single NaN or infinity anywhere, in any block, on any thread count, is found.
+TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
+  const int before = frac::max_threads();
+  for (const int threads : {1, 2}) {
+    frac::set_threads(threads);
+    for (const std::size_t n : {7u, 3300u, 3309u}) {
+      std::vector<double> x(n, 1e300);
+      EXPECT_TRUE(frac::all_finite(x, 3)) << n;
+      for (const std::size_t at : {std::size_t{0}, n / 3 - 1, n / 3, n / 2, n - 1}) {
+        for (const double bad : {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+          x[at] = bad;
+          EXPECT_FALSE(frac::all_finite(x, 3)) << n << " values, " << bad << " at " << at;
+          EXPECT_FALSE(frac::all_finite(x)) << n << " values, " << bad << " at " << at;
+          x[at] = 1e300;
+        }
+      }
+    }
+  }
+  frac::set_threads(before);
+}
+
+}  // namespace
