@@ -13,8 +13,10 @@ RC_SCENE := data/scenes/stretch.ini
 RC_COMMON = --stop.t_max $(RC_TMAX) --stop.tip_margin 0.02 --output.frame_interval 1e-4 -q
 
 # The levers, one switch at a time (SI; Δ = 1 mm, β = 0.3 m√a/Δ = 1.04e-2 kg/s).
-RC_SOFT := --law.pair marder-soft --law.cutoff smoothstep --law.cutoff_width 1e-4 --law.cutoff_length 2.786e-3 \
-           --physics.irreversible on --breaking.extra_widths 0.2 --integrator.safety 0.2
+# The softening law (its u_c set by each run: 2.786e-3 for the levers, from the far field for the stretches).
+RC_SOFT_LAW := --law.pair marder-soft --law.cutoff smoothstep --law.cutoff_width 1e-4 --physics.irreversible on \
+               --breaking.extra_widths 0.2 --integrator.safety 0.2
+RC_SOFT := $(RC_SOFT_LAW) --law.cutoff_length 2.786e-3
 RC_OPT_paper :=
 RC_OPT_irreversible := --physics.irreversible on
 RC_OPT_damped := --physics.irreversible on --physics.damping on
@@ -77,7 +79,7 @@ rc_stretch_run = uc=$$(awk -v l=$(1) -v o=$(2) 'BEGIN { printf "%.6g", 1e-3 * (s
 
 $(RC)/stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run stretch_y $*"
-	$(call rc_stretch_run,$*,0.12,$(RC_SOFT))
+	$(call rc_stretch_run,$*,0.12,$(RC_SOFT_LAW))
 
 $(RC)/pair-stretch-%.h5: $(RC)/strip.h5 $(RC_SCENE) | build
 	@echo "rubber-run pair law, stretch_y $*"
