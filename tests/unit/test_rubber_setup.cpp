@@ -97,6 +97,28 @@ TEST(RubberSetup, FarFieldWarningsNameTheNumbers) {
   EXPECT_TRUE(turned.warnings.empty()) << turned.warnings[0];
 }
 
+// Irreversible breaking mid-cut-off with a three-body term: a warning naming the weight h left at the cut.
+TEST(RubberSetup, WarnsWhenIrreversibleBreakingCutsBondsMidCutoff) {
+  const auto m = strip(20, 10);
+  const std::string scene = std::string(kStretch) + "[law]\ncutoff_length = 3.45e-3\n[physics]\nirreversible = on\n";
+  // The scene's 10 Fermi widths leave h = 4.5e-5: quiet.
+  EXPECT_TRUE(setup_for(scene, m).warnings.empty()) << setup_for(scene, m).warnings[0];
+  // 0.2 widths leave h = 1/(1 + e^0.2) = 0.45.
+  const RubberSetup mid = setup_for(scene + "[breaking]\nextra_widths = 0.2\n", m);
+  ASSERT_EQ(mid.warnings.size(), 1u);
+  EXPECT_NE(mid.warnings[0].find("breaking.extra_widths = 0.2"), std::string::npos) << mid.warnings[0];
+  EXPECT_NE(mid.warnings[0].find("h is still 0.45"), std::string::npos) << mid.warnings[0];
+  // Not without the three-body term (b = 0), nor for reversible bonds, nor past a compact cut-off (h = 0).
+  EXPECT_TRUE(setup_for(scene + "[material]\nb = 0\n[breaking]\nextra_widths = 0.2\n", m).warnings.empty());
+  EXPECT_TRUE(setup_for(std::string(kStretch) + "[law]\ncutoff_length = 3.45e-3\n[breaking]\nextra_widths = 0.2\n", m)
+                  .warnings.empty());
+  EXPECT_TRUE(setup_for(std::string(kStretch) +
+                            "[law]\ncutoff = smoothstep\ncutoff_length = 2.786e-3\ncutoff_width = 1e-4\n"
+                            "[physics]\nirreversible = on\n[breaking]\nextra_widths = 0.2\n",
+                        m)
+                  .warnings.empty());
+}
+
 TEST(RubberSetup, TimeStepIsBoundedByTheStiffestStateAndRefusedAbove) {
   const auto m = strip(20, 10);
   const RubberSetup su = setup_for(kStretch, m);
