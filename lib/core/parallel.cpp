@@ -8,6 +8,20 @@ int max_threads() { return omp_get_max_threads(); }
 int thread_count() { return omp_get_num_threads(); }
 int thread_index() { return omp_get_thread_num(); }
 
+void HomeFirstSchedule::reserve(std::size_t threads) {
+  if (threads <= capacity_) return;
+  cursor_ = std::make_unique<Cursor[]>(threads);
+  capacity_ = threads;
+}
+
+void HomeFirstSchedule::start(std::size_t items) {
+  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+  const Range r = static_range(items, t, nt);
+  cursor_[t].next.store(r.first, std::memory_order_relaxed);
+  cursor_[t].end = r.last;
+#pragma omp barrier
+}
+
 void set_threads(int requested) { omp_set_num_threads(requested > 0 ? requested : omp_get_num_procs()); }
 
 }  // namespace frac

@@ -2,7 +2,9 @@
 // Threading policy of the force loops (OpenMP): a loop runs in parallel only above this many items,
 // below it the fork and join cost more than the work. Each item writes its own slot; sums over items
 // are done afterwards in item order, so results do not depend on the thread count.
+#include <atomic>
 #include <cstddef>
+#include <memory>
 
 namespace frac {
 
@@ -30,6 +32,40 @@ inline Range static_range(std::size_t items, std::size_t t, std::size_t nt) {
   const std::size_t first = t < longer ? t * (q + 1) : longer * (q + 1) + (t - longer) * q;
   return {first, first + (t < longer ? q + 1 : q)};
 }
+
+// Work sharing with locality, for loops whose items cost unevenly (the contact pairs: clipping costs ten
+// times a separation test): the items are dealt out as a static schedule deals them (static_range), so a
+// thread mostly works on the cells it integrated and reads data it wrote, in its own cache; it takes its
+// own in chunks, then helps the others with what is left of theirs. Each item runs once, on one thread;
+// when each writes its own slot, which thread does not change any result.
+class HomeFirstSchedule {
+ public:
+  // Inside a parallel region, by every thread (ends with a barrier): the cursors over `items`.
+  void start(std::size_t items);
+  // Inside the region, after start: body(first, last) on chunks of at most `chunk` items until none is left.
+  template <class Body>
+  void run(std::size_t chunk, Body&& body) {
+    const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+    for (std::size_t s = 0; s < nt; ++s) {
+      Cursor& c = cursor_[t + s < nt ? t + s : t + s - nt];
+      for (;;) {
+        const std::size_t first = c.next.fetch_add(chunk, std::memory_order_relaxed);
+        if (first >= c.end) break;
+        body(first, first + chunk < c.end ? first + chunk : c.end);
+      }
+    }
+  }
+  // Before the region (outside the time loop's steady state: allocates when the thread count grows).
+  void reserve(std::size_t threads);
+
+ private:
+  struct alignas(64) Cursor {
+    std::atomic<std::size_t> next{0};
+    std::size_t end = 0;
+  };
+  std::unique_ptr<Cursor[]> cursor_;
+  std::size_t capacity_ = 0;
+};
 
 // The per-coordinate loops over n = blocks·len coordinates laid out in `blocks` equal blocks (the DEM: x of
 // every cell, then y, then φ) split them so that thread t takes the same part of every block,

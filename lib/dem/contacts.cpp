@@ -276,15 +276,20 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   const auto most = static_cast<std::size_t>(max_threads());
   if (blocks_.size() < most) blocks_.resize(most);
   std::int64_t candidates = 0;
-#pragma omp parallel if (pairs > kMinParallelItems)
+  pair_schedule_.reserve(most);
+#pragma omp parallel if (pairs > kMinParallelItems) reduction(+ : candidates)
   {
-    // Each neighbour pair in its own slot (dynamic schedule: pairs that clip cost ten times those that do not).
-#pragma omp for schedule(dynamic, 64) reduction(+ : candidates)
-    for (std::size_t p = 0; p < pairs; ++p) candidates += test_pair(p, x, y, slack);
+    // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread
+    // takes the pairs of its cells first, then helps the others.
+    pair_schedule_.start(pairs);
+    pair_schedule_.run(64, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; ++p) candidates += test_pair(p, x, y, slack);
+    });
+#pragma omp barrier
     // The list in pair order, the same whatever the thread count: each thread counts the overlapping pairs
     // of its block of pairs, then fills its block at the offset of the blocks before it.
     const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-    const std::size_t first = pairs * t / nt, last = pairs * (t + 1) / nt;
+    const auto [first, last] = static_range(pairs, t, nt);  // the pairs it tested first
     Block& block = blocks_[t];
     block = Block{};
     for (std::size_t p = first; p < last; ++p) {

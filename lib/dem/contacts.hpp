@@ -113,6 +113,7 @@ class ContactSearch {
     std::int64_t offset = 0;                                   // its first entry in the list
   };
   std::vector<Block> blocks_;
+  HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)

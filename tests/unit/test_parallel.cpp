@@ -54,6 +54,40 @@ TEST(Parallel, CoordinateRangesCoverEveryCoordinateOnceAlignedWithTheCells) {
   frac::set_threads(before);
 }
 
+// Every item runs once, whatever the thread count, the chunk and the cost of the items (a thread that finishes
+// its own takes the others'); with one thread, in order.
+TEST(Parallel, HomeFirstScheduleRunsEveryItemOnce) {
+  frac::HomeFirstSchedule schedule;
+  for (const int threads : {1, 2, 3}) {
+    schedule.reserve(static_cast<std::size_t>(threads));
+    for (const std::size_t items : {0u, 1u, 63u, 64u, 1000u, 4099u}) {
+      for (const std::size_t chunk : {1u, 7u, 64u}) {
+        std::vector<int> runs(items, 0);
+        std::vector<std::size_t> order;
+#pragma omp parallel num_threads(threads)
+        {
+          schedule.start(items);
+          schedule.run(chunk, [&](std::size_t first, std::size_t last) {
+            for (std::size_t k = first; k < last; ++k) {
+              // Uneven costs: the first items are heavy, so the other threads run out of their own early.
+              volatile double sink = 0;
+              for (std::size_t w = 0; w < (k < items / 4 ? 2000u : 10u); ++w) sink = sink + 1.0;
+#pragma omp atomic
+              ++runs[k];
+              if (threads == 1) order.push_back(k);
+            }
+          });
+        }
+        for (std::size_t k = 0; k < items; ++k)
+          ASSERT_EQ(runs[k], 1) << items << " items, chunk " << chunk << ", " << threads << " threads, item " << k;
+        if (threads == 1) {
+          for (std::size_t k = 0; k < items; ++k) ASSERT_EQ(order[k], k);
+        }
+      }
+    }
+  }
+}
+
 // A single NaN or infinity anywhere, in any block, on any thread count, is found.
 TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
   const int before = frac::max_threads();
