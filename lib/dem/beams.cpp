@@ -126,8 +126,15 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const {
 }
 
 double Beams::energy(std::span<const double> q) const {
+  // Each beam's energy in parallel, in its own slot, then summed in beam order: the same bits whatever the
+  // thread count.
+  const std::size_t count = active_.size();
+  if (energy_.size() < count) energy_.resize(count);
+  double* energy = energy_.data();
+#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
+  for (std::size_t k = 0; k < count; ++k) energy[k] = response(static_cast<std::size_t>(active_[k]), q).energy;
   double e = 0;
-  for (const std::int32_t b : active_) e += response(static_cast<std::size_t>(b), q).energy;
+  for (std::size_t k = 0; k < count; ++k) e += energy[k];
   return e;
 }
 

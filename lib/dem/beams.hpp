@@ -72,6 +72,7 @@ class Beams {
   std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
   mutable std::vector<std::uint8_t> far_;  // per active beam: beyond beam_response_near_reference
+  mutable std::vector<double> energy_;     // per active beam: its elastic energy (energy(), in parallel)
   struct Verdict {
     int mode;       // breaking_mode's
     double energy;  // elastic energy, J, when it breaks

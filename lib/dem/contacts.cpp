@@ -40,25 +40,20 @@ ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
   }
 }
 
-bool ContactSearch::stale(std::span<const double> q) const {
-  if (ref_.size() != q.size()) return true;
-  const std::size_t n = bodies_->n;
-  const double half = 0.5 * skin_;
-  const auto& r = bodies_->bound_radius;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double dx = q[k] - ref_[k], dy = q[n + k] - ref_[n + k];
-    const double moved = std::sqrt(dx * dx + dy * dy) + r[k] * std::abs(q[2 * n + k] - ref_[2 * n + k]);
-    if (!(moved <= half)) return true;  // also catches NaN
-  }
-  return false;
-}
-
-void ContactSearch::world_vertices(std::span<const double> q) {
+// Vertices of every cell in world coordinates, and whether the neighbour list is stale: some cell may have
+// moved a vertex by more than skin/2 since the last build (centroid displacement plus bounding radius times
+// rotation; NaN counts as moved). One pass over the cells, on the threads.
+bool ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const std::size_t n = bodies_->n;
   const double* x = q.data();
   const double* y = x + n;
   const double* phi = y + n;
-#pragma omp parallel for schedule(static) if (n > kMinParallelItems)
+  const bool built = ref_.size() == q.size();
+  const double* ref = ref_.data();
+  const double half = 0.5 * skin_;
+  const double* r = bodies_->bound_radius.data();
+  bool stale = !built;
+#pragma omp parallel for schedule(static) if (n > kMinParallelItems) reduction(|| : stale)
   for (std::size_t k = 0; k < n; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
     const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
@@ -67,7 +62,13 @@ void ContactSearch::world_vertices(std::span<const double> q) {
       const Vec2& p = mesh_->vertex[v];
       world_[v] = Vec2(x[k] + c * p.x() - s * p.y(), y[k] + s * p.x() + c * p.y());
     }
+    if (built) {
+      const double dx = x[k] - ref[k], dy = y[k] - ref[n + k];
+      const double moved = std::sqrt(dx * dx + dy * dy) + r[k] * std::abs(phi[k] - ref[2 * n + k]);
+      stale = stale || !(moved <= half);
+    }
   }
+  return stale;
 }
 
 void ContactSearch::rebuild(std::span<const double> q) {
@@ -261,8 +262,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     out.clear();
     return;
   }
-  world_vertices(q);
-  if (stale(q)) rebuild(q);
+  if (world_vertices_and_staleness(q)) rebuild(q);
   const double* x = q.data();
   const double* y = x + n;
   const double g = bodies_->length_scale;

@@ -75,7 +75,7 @@ class ContactSearch {
   std::int64_t rebuilds() const { return rebuilds_; }
 
  private:
-  void world_vertices(std::span<const double> q);
+  bool world_vertices_and_staleness(std::span<const double> q);
   std::span<const Vec2> world_polygon(std::size_t k) const {
     const auto& off = mesh_->vertex_offset;
     return {world_.data() + off[k], static_cast<std::size_t>(off[k + 1] - off[k])};
@@ -88,7 +88,6 @@ class ContactSearch {
   std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
   std::vector<std::int32_t> cell_of_;
   std::vector<std::int32_t> sorted_;
-  bool stale(std::span<const double> q) const;
   void rebuild(std::span<const double> q);
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
   void fill_contacts(std::size_t first, std::size_t last, std::size_t k, ContactList& out);
