@@ -10,5 +10,7 @@
 namespace frac {
 
 bool all_finite(std::span<const double> x, std::size_t blocks = 1);
+// Both arrays (of the same layout), in one pass of the threads.
+bool all_finite(std::span<const double> x, std::span<const double> y, std::size_t blocks);
 
 }  // namespace frac

@@ -69,37 +69,60 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   const bool contact_list = physics_.contacts;
   if (contact_list) search_.find(q, contacts_);
   for (const Term term : terms_) {
-    const auto k = static_cast<std::size_t>(term);
-    ++calls_[k];
-    switch (term) {
-      case Term::beams: beams_.add_forces(q, force_); break;
-      case Term::contact_elastic: power_[k] = contact_elastic(contacts_, contact_parameters_, bodies_, q, v, force_); break;
-      case Term::contact_damping: power_[k] = contact_damping(contacts_, contact_parameters_, bodies_, q, v, force_); break;
-      case Term::contact_friction: power_[k] = contact_friction(contacts_, contact_parameters_, bodies_, q, v, force_); break;
-      default: break;
-    }
-    if (non_finite_term_ == Term::count) {
-      if (!all_finite(force_, 3)) {
-        non_finite_term_ = term;
-        for (std::size_t i = 0; i < force_.size(); ++i)
-          if (!std::isfinite(force_[i])) {
-            non_finite_index_ = i;
-            break;
-          }
-      }
-    }
+    ++calls_[static_cast<std::size_t>(term)];
+    power_[static_cast<std::size_t>(term)] = add_term(term, q, v);
   }
+  // The accelerations, and in the same pass whether every force is finite (Σ F·0 is 0 exactly then). A
+  // non-finite force is traced to the first term that made it (the run stops at this step).
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();
-  for_coordinate_ranges(n, 3, [&](std::size_t first, std::size_t last) {
-#pragma omp simd
-    for (std::size_t k = first; k < last; ++k) acc[k] = force[k] * inv_mass[k];
-  });
+  double zero = 0;
+  auto accelerate = [&](std::size_t first, std::size_t last) {
+    double z = 0;
+#pragma omp simd reduction(+ : z)
+    for (std::size_t k = first; k < last; ++k) {
+      acc[k] = force[k] * inv_mass[k];
+      z += force[k] * 0.0;
+    }
+    return z;
+  };
+  if (n <= kMinParallelCoordinates) {
+    zero = accelerate(0, n);
+  } else {
+#pragma omp parallel reduction(+ : zero)
+    this_thread_coordinate_ranges(n, 3, [&](std::size_t first, std::size_t last) { zero += accelerate(first, last); });
+  }
+  if (zero != 0.0 && non_finite_term_ == Term::count) blame_non_finite(q, v);
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {
     const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];
     const double m_k = 1.0 / inv_mass_[p.index];
     boundary_power_ += (m_k * m.acceleration(t) - force_[p.index]) * m.velocity(t);
+  }
+}
+
+double Model::add_term(Term term, std::span<const double> q, std::span<const double> v) {
+  switch (term) {
+    case Term::beams: beams_.add_forces(q, force_); return 0.0;
+    case Term::contact_elastic: return contact_elastic(contacts_, contact_parameters_, bodies_, q, v, force_);
+    case Term::contact_damping: return contact_damping(contacts_, contact_parameters_, bodies_, q, v, force_);
+    case Term::contact_friction: return contact_friction(contacts_, contact_parameters_, bodies_, q, v, force_);
+    default: return 0.0;
+  }
+}
+
+void Model::blame_non_finite(std::span<const double> q, std::span<const double> v) {
+  // The same evaluation again, one term at a time, from zero forces (the contact list is kept).
+  std::fill(force_.begin(), force_.end(), 0.0);
+  for (const Term term : terms_) {
+    add_term(term, q, v);
+    for (std::size_t i = 0; i < force_.size(); ++i) {
+      if (!std::isfinite(force_[i])) {
+        non_finite_term_ = term;
+        non_finite_index_ = i;
+        return;
+      }
+    }
   }
 }
 

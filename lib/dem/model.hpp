@@ -77,6 +77,12 @@ class Model final : public dynamics::System {
   std::array<double, 2> kinetic_energy(std::span<const double> v) const;
 
  private:
+  // Adds one term's forces into force_; returns the power it delivers (W; 0 for the beams, which derive from
+  // an energy).
+  double add_term(Term term, std::span<const double> q, std::span<const double> v);
+  // After an evaluation whose forces are not all finite: the first term, and the coordinate, where they
+  // became non-finite (non_finite_term_, non_finite_index_).
+  void blame_non_finite(std::span<const double> q, std::span<const double> v);
   Bodies bodies_;
   Material material_;
   Physics physics_;

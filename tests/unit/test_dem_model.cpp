@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/rng.hpp"
 #include "core/scene.hpp"
@@ -754,6 +756,56 @@ namespace {
 
 // The beam forces on every cell equal the loop over the intact beams in beam order (F on i, −F and τ_j on
 // j), bit for bit, with the beam law of beam.hpp: after some beams broke, too.
+// A non-finite force is traced to the first term that made it and to a coordinate where it is not finite,
+// on one and on two threads (400 cells: the per-coordinate loops run on the threads).
+TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
+  const CellMesh mesh = disc_mesh(400, 3);
+  const std::size_t n = mesh.cells(), bad = n / 2;
+  const int before = frac::max_threads();
+  for (const int threads : {1, 2}) {
+    frac::set_threads(threads);
+    Material mat;
+    mat.gamma_n = 1000;
+    Physics ph;
+    ph.damping = true;
+    // Squeezed by 1 % about the origin: neighbours overlap, so every contact term has work.
+    auto q = reference_state(mesh);
+    for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
+    std::vector<double> v(3 * n, 0.0), a(3 * n);
+    {
+      Model model(mesh, mat, ph);  // all finite
+      model.accelerations(0, q, v, a);
+      EXPECT_EQ(model.non_finite_term(), Term::count);
+      EXPECT_GT(model.contacts().size(), n);
+    }
+    {
+      Model model(mesh, mat, ph);  // a turned-to-NaN cell: its beams (the first term) go NaN
+      auto qb = q;
+      qb[2 * n + bad] = std::numeric_limits<double>::quiet_NaN();
+      model.accelerations(0, qb, v, a);
+      EXPECT_EQ(model.non_finite_term(), Term::beams) << threads << " threads";
+      EXPECT_FALSE(std::isfinite(model.forces()[model.non_finite_index()]));
+    }
+    {
+      Model model(mesh, mat, ph);  // a NaN velocity: the positions are finite, only the damping sees it
+      auto vb = v;
+      vb[bad] = std::numeric_limits<double>::quiet_NaN();
+      model.accelerations(0, q, vb, a);
+      EXPECT_EQ(model.non_finite_term(), Term::contact_damping) << threads << " threads";
+      EXPECT_FALSE(std::isfinite(model.forces()[model.non_finite_index()]));
+      // The first such coordinate: the cell's own, or that of a cell in contact with it (the opposite force).
+      const std::size_t cell = model.non_finite_index() % n;
+      bool touching = cell == bad;
+      const auto& c = model.contacts();
+      for (std::size_t k = 0; k < c.size(); ++k)
+        touching |= (static_cast<std::size_t>(c.i[k]) == cell && static_cast<std::size_t>(c.j[k]) == bad) ||
+                    (static_cast<std::size_t>(c.j[k]) == cell && static_cast<std::size_t>(c.i[k]) == bad);
+      EXPECT_TRUE(touching) << "cell " << cell;
+    }
+  }
+  frac::set_threads(before);
+}
+
 TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
   const CellMesh mesh = rect_mesh(14, 10, 5);
   Material mat;

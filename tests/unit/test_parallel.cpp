@@ -94,13 +94,16 @@ TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
   for (const int threads : {1, 2}) {
     frac::set_threads(threads);
     for (const std::size_t n : {7u, 3300u, 3309u}) {
-      std::vector<double> x(n, 1e300);
+      std::vector<double> x(n, 1e300), y(n, -1e300);
       EXPECT_TRUE(frac::all_finite(x, 3)) << n;
+      EXPECT_TRUE(frac::all_finite(x, y, 3)) << n;
       for (const std::size_t at : {std::size_t{0}, n / 3 - 1, n / 3, n / 2, n - 1}) {
         for (const double bad : {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
           x[at] = bad;
           EXPECT_FALSE(frac::all_finite(x, 3)) << n << " values, " << bad << " at " << at;
           EXPECT_FALSE(frac::all_finite(x)) << n << " values, " << bad << " at " << at;
+          EXPECT_FALSE(frac::all_finite(x, y, 3)) << n << " values, " << bad << " at " << at << " of the first";
+          EXPECT_FALSE(frac::all_finite(y, x, 3)) << n << " values, " << bad << " at " << at << " of the second";
           x[at] = 1e300;
         }
       }
