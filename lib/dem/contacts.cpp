@@ -19,6 +19,7 @@ void ContactList::resize(std::size_t count) {
   area.resize(count);
   inv_lc.resize(count);
   fn.resize(count);
+  pair_force.resize(count);
   candidate_pairs = enclosed = multi_crossing = 0;
 }
 
@@ -251,6 +252,7 @@ void ContactSearch::fill_contacts(std::size_t first, std::size_t last, std::size
     out.area[k] = geo.area;
     out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
     out.fn[k] = 0.0;
+    out.pair_force[k] = {0.0, 0.0};
     contact_of_pair_[p] = static_cast<std::int32_t>(k);
     ++k;
   }
@@ -335,75 +337,35 @@ inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::spa
 }
 
 // One contact force term: force_of(k) gives the force on i of contact k (j receives its opposite), applied
-// at R_k. The pair forces, their torques and powers are computed in parallel, each in its own slot, then
-// added to the bodies in contact order (each cell in parallel, or one thread over the list): the same bits
-// whatever the thread count. Returns the power delivered to the bodies, F·(v_i(R) − v_j(R)) summed over the
-// contacts in contact order.
+// at R_k. The forces are computed in parallel and added to the contacts' slots (c.pair_force); the power of
+// each, F·(v_i(R) − v_j(R)), in its own slot, then summed in contact order: the same bits whatever the
+// thread count. Returns the power delivered to the bodies.
 template <class ForceOf>
 double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q, std::span<const double> v,
-                       std::span<double> f, ForceOf&& force_of) {
+                       ForceOf&& force_of) {
   const std::size_t count = c.size();
-  if (c.pair_force.size() < count) c.pair_force.resize(count + count / 4);
+  if (c.pair_power.size() < count) c.pair_power.resize(count + count / 4);
   const double* x = q.data();
   const double* y = x + n;
   const double* vx = v.data();
   const double* vy = vx + n;
   const double* w = vy + n;
-  double* fxa = f.data();
-  double* fya = fxa + n;
-  double* tz = fya + n;
-  const bool parallel = count > kMinParallelItems;
-  // With more than one thread, each cell gathers its contacts' forces (through the list's per-cell index, in
-  // contact order: the same additions in the same order as the sum over the list below).
-  const bool gather = parallel && max_threads() > 1 && c.cell_start.size() == n + 1;
-#pragma omp parallel if (parallel)
-  {
-#pragma omp for schedule(static)
-    for (std::size_t k = 0; k < count; ++k) {
-      const Vec2 force = force_of(k);
-      const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-      const double fx = force.x(), fy = force.y();
-      const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
-      const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
-      const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
-      c.pair_force[k] = {fx, fy, rix * fy - riy * fx, rjx * fy - rjy * fx, fx * (vix - vjx) + fy * (viy - vjy)};
-    }
-    if (gather) {
-#pragma omp for schedule(static)
-      for (std::size_t cell = 0; cell < n; ++cell) {
-        const auto first = static_cast<std::size_t>(c.cell_start[cell]);
-        const auto last = static_cast<std::size_t>(c.cell_start[cell + 1]);
-        for (std::size_t s = first; s < last; ++s) {
-          const CellLink link = c.cell_links[s];
-          const std::int32_t k = c.contact_of_pair[static_cast<std::size_t>(link.pair)];
-          if (k < 0) continue;
-          const PairForce& p = c.pair_force[static_cast<std::size_t>(k)];
-          if (link.end == 0) {
-            fxa[cell] += p.fx;
-            fya[cell] += p.fy;
-            tz[cell] += p.torque_i;
-          } else {
-            fxa[cell] -= p.fx;
-            fya[cell] -= p.fy;
-            tz[cell] -= p.torque_j;
-          }
-        }
-      }
-    }
+  PairForce* pf = c.pair_force.data();
+  double* pw = c.pair_power.data();
+#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec2 force = force_of(k);
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    const double fx = force.x(), fy = force.y();
+    const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
+    const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
+    const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
+    pf[k].fx += fx;
+    pf[k].fy += fy;
+    pw[k] = fx * (vix - vjx) + fy * (viy - vjy);
   }
   double power = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const PairForce& p = c.pair_force[k];
-    power += p.power;
-    if (gather) continue;
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    fxa[i] += p.fx;
-    fya[i] += p.fy;
-    fxa[j] -= p.fx;
-    fya[j] -= p.fy;
-    tz[i] += p.torque_i;
-    tz[j] -= p.torque_j;
-  }
+  for (std::size_t k = 0; k < count; ++k) power += pw[k];
   return power;
 }
 
@@ -413,9 +375,9 @@ double effective_mass(const Bodies& bodies, std::size_t i, std::size_t j) {
 }  // namespace
 
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                       std::span<const double> v, std::span<double> f) {
+                       std::span<const double> v) {
   const double yh = p.grain_modulus * p.thickness;
-  return add_pair_forces(c, bodies.n, q, v, f, [&](std::size_t k) {
+  return add_pair_forces(c, bodies.n, q, v, [&](std::size_t k) {
     const double fn = -yh * c.area[k] * c.inv_lc[k];
     c.fn[k] = fn;
     return Vec2(fn * c.nx[k], fn * c.ny[k]);
@@ -423,8 +385,8 @@ double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies&
 }
 
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                       std::span<const double> v, std::span<double> f) {
-  return add_pair_forces(c, bodies.n, q, v, f, [&](std::size_t k) {
+                       std::span<const double> v) {
+  return add_pair_forces(c, bodies.n, q, v, [&](std::size_t k) {
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
     const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
@@ -435,8 +397,8 @@ double contact_damping(ContactList& c, const ContactParameters& p, const Bodies&
 }
 
 double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                        std::span<const double> v, std::span<double> f) {
-  return add_pair_forces(c, bodies.n, q, v, f, [&](std::size_t k) {
+                        std::span<const double> v) {
+  return add_pair_forces(c, bodies.n, q, v, [&](std::size_t k) {
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
     const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
@@ -445,6 +407,60 @@ double contact_friction(ContactList& c, const ContactParameters& p, const Bodies
         std::copysign(std::min(effective_mass(bodies, i, j) * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
     return Vec2(ft * tx, ft * ty);
   });
+}
+
+void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {
+  const std::size_t count = c.size();
+  const double* x = q.data();
+  const double* y = x + n;
+  double* fxa = f.data();
+  double* fya = fxa + n;
+  double* tz = fya + n;
+  const PairForce* pf = c.pair_force.data();
+  // With more than one thread, each cell gathers its contacts' forces (through the list's per-cell index, in
+  // contact order: the same additions in the same order as the sum over the list below). The torques about
+  // c_i and c_j: τ_i = r_i × F, τ_j = −r_j × F (added as −(r_j × F)), r = R − c.
+  if (count > kMinParallelItems && max_threads() > 1 && c.cell_start.size() == n + 1) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t cell = 0; cell < n; ++cell) {
+      const auto first = static_cast<std::size_t>(c.cell_start[cell]);
+      const auto last = static_cast<std::size_t>(c.cell_start[cell + 1]);
+      for (std::size_t s = first; s < last; ++s) {
+        const CellLink link = c.cell_links[s];
+        const std::int32_t k = c.contact_of_pair[static_cast<std::size_t>(link.pair)];
+        if (k < 0) continue;
+        const auto kk = static_cast<std::size_t>(k);
+        const double fx = pf[kk].fx, fy = pf[kk].fy;
+        const double rx = c.rx[kk] - x[cell], ry = c.ry[kk] - y[cell];
+        if (link.end == 0) {
+          fxa[cell] += fx;
+          fya[cell] += fy;
+          tz[cell] += rx * fy - ry * fx;
+        } else {
+          fxa[cell] -= fx;
+          fya[cell] -= fy;
+          tz[cell] -= rx * fy - ry * fx;
+        }
+      }
+    }
+    return;
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    const double fx = pf[k].fx, fy = pf[k].fy;
+    fxa[i] += fx;
+    fya[i] += fy;
+    fxa[j] -= fx;
+    fya[j] -= fy;
+    tz[i] += (c.rx[k] - x[i]) * fy - (c.ry[k] - y[i]) * fx;
+    tz[j] -= (c.rx[k] - x[j]) * fy - (c.ry[k] - y[j]) * fx;
+  }
+}
+
+void ContactList::clear_forces() {
+  const std::size_t count = size();
+#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
+  for (std::size_t k = 0; k < count; ++k) pair_force[k] = {0.0, 0.0};
 }
 
 }  // namespace frac::dem

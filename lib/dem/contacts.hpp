@@ -7,12 +7,15 @@
 //   contact_damping   + m_eff·γ_N·v_n along n (v_n < 0 while approaching)
 //   contact_friction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
 // Every pair force is equal and opposite and acts at one point, so momentum and angular momentum are
-// conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger.
+// conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger, and
+// adds its force to each contact's slot; one pass (add_contact_forces) then adds the contacts' forces, summed
+// over the terms, to the cells.
 // Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order), the
-// neighbour pairs (circle test, separating edges, overlap geometry) and the contact forces, each written
-// to its own slot; the list is then filled in pair order (each thread its block of pairs, at offsets from
-// the counts of the blocks before it), and each cell gathers its contacts' forces in contact order (through
-// a per-cell index of the neighbour pairs), so results do not depend on the thread count. The overlap of a
+// neighbour pairs (circle test, separating edges, overlap geometry; each thread its cells' pairs first) and
+// the contact forces, each written to its own slot; the list is then filled in pair order (each thread its
+// block of pairs, at offsets from the counts of the blocks before it), and each cell gathers its contacts'
+// forces in contact order (through a per-cell index of the neighbour pairs), so results do not depend on
+// the thread count. The overlap of a
 // pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell
 // edge, which leave out clip lines that cannot cut.
 #include <array>
@@ -29,10 +32,9 @@ namespace frac::dem {
 
 using geometry::Vec2;
 
-// One contact's force on i (j receives −F), its torques about c_i and c_j (τ_i = r_i × F, τ_j = −r_j × F is
-// added as −torque_j) and the power it delivers: scratch of the force terms.
+// The force on i of one contact (j receives −F), summed over the contact force terms that ran, N.
 struct PairForce {
-  double fx, fy, torque_i, torque_j, power;
+  double fx, fy;
 };
 
 // One end of a neighbour pair, in a cell's list of its pairs.
@@ -48,7 +50,10 @@ struct ContactList {
   std::vector<double> area;     // overlap area, m^2
   std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
   std::vector<double> fn;       // normal force on i along n (elastic + damping), N; negative = repulsive
-  std::vector<PairForce> pair_force;  // scratch of the force terms (one slot per contact, filled in parallel)
+  // The force on i summed over the terms that ran (zero after ContactSearch::find, resize and clear_forces;
+  // each term adds its own), and scratch for the power of the last term (one slot per contact).
+  std::vector<PairForce> pair_force;
+  std::vector<double> pair_power;
   // Per-cell index of the contacts, set by ContactSearch::find (empty for a list built by hand): cell c's
   // neighbour pairs are cell_links[cell_start[c] .. cell_start[c + 1]) in pair order, and contact_of_pair
   // gives a pair's contact, or −1. A cell meets its contacts in contact order, as a sum over the list does.
@@ -57,8 +62,10 @@ struct ContactList {
   std::span<const std::int32_t> contact_of_pair;
   std::size_t size() const { return i.size(); }
   void clear();
-  // Makes room for `count` contacts (entries not yet set) and zeroes the diagnostics.
+  // Makes room for `count` contacts (entries not yet set; new pair forces zero) and zeroes the diagnostics.
   void resize(std::size_t count);
+  // Sets every contact's summed force back to zero.
+  void clear_forces();
   // Diagnostics of the last search.
   std::int64_t candidate_pairs = 0;  // pairs whose bounding circles overlap
   std::int64_t enclosed = 0;         // overlaps without a contact line (one polygon inside another)
@@ -123,13 +130,16 @@ struct ContactParameters {
   double grain_modulus, thickness, gamma_n, gamma_t, friction;
 };
 
-// The force terms. q, v: state and velocities (flat layout of bodies.hpp); f: forces accumulated in
-// the same layout. Each returns the power delivered to the bodies, W.
+// The force terms. q, v: state and velocities (flat layout of bodies.hpp). Each adds its force on every
+// contact to the contact's pair_force (equal and opposite on j, acting at R) and returns the power it delivers
+// to the bodies, W. add_contact_forces then adds the contacts' summed forces and their torques to the cells'
+// forces f (same layout), once for all the terms that ran.
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                       std::span<const double> v, std::span<double> f);
+                       std::span<const double> v);
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                       std::span<const double> v, std::span<double> f);
+                       std::span<const double> v);
 double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies,
-                        std::span<const double> q, std::span<const double> v, std::span<double> f);
+                        std::span<const double> q, std::span<const double> v);
+void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
 
 }  // namespace frac::dem

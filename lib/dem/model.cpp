@@ -72,6 +72,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
     ++calls_[static_cast<std::size_t>(term)];
     power_[static_cast<std::size_t>(term)] = add_term(term, q, v);
   }
+  if (contact_list) add_contact_forces(contacts_, bodies_.n, q, force_);  // the contact terms' forces, summed
   // The accelerations, and in the same pass whether every force is finite (Σ F·0 is 0 exactly then). A
   // non-finite force is traced to the first term that made it (the run stops at this step).
   const double* inv_mass = inv_mass_.data();
@@ -104,18 +105,22 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
 double Model::add_term(Term term, std::span<const double> q, std::span<const double> v) {
   switch (term) {
     case Term::beams: beams_.add_forces(q, force_); return 0.0;
-    case Term::contact_elastic: return contact_elastic(contacts_, contact_parameters_, bodies_, q, v, force_);
-    case Term::contact_damping: return contact_damping(contacts_, contact_parameters_, bodies_, q, v, force_);
-    case Term::contact_friction: return contact_friction(contacts_, contact_parameters_, bodies_, q, v, force_);
+    case Term::contact_elastic: return contact_elastic(contacts_, contact_parameters_, bodies_, q, v);
+    case Term::contact_damping: return contact_damping(contacts_, contact_parameters_, bodies_, q, v);
+    case Term::contact_friction: return contact_friction(contacts_, contact_parameters_, bodies_, q, v);
     default: return 0.0;
   }
 }
 
 void Model::blame_non_finite(std::span<const double> q, std::span<const double> v) {
-  // The same evaluation again, one term at a time, from zero forces (the contact list is kept).
+  // The same evaluation again, one term at a time, from zero forces (the contact list is kept): each contact
+  // term alone on the contacts, then added to the cells.
   std::fill(force_.begin(), force_.end(), 0.0);
   for (const Term term : terms_) {
+    const bool contact = term != Term::beams;
+    if (contact) contacts_.clear_forces();
     add_term(term, q, v);
+    if (contact) add_contact_forces(contacts_, bodies_.n, q, force_);
     for (std::size_t i = 0; i < force_.size(); ++i) {
       if (!std::isfinite(force_[i])) {
         non_finite_term_ = term;

@@ -153,9 +153,10 @@ LibResult library(const CellMesh& mesh, const Bodies& bodies, const std::vector<
   ContactSearch search(mesh, bodies);
   search.find(q, r.list);
   r.f.assign(q.size(), 0.0);
-  r.power[0] = frac::dem::contact_elastic(r.list, p, bodies, q, v, r.f);
-  r.power[1] = damping ? frac::dem::contact_damping(r.list, p, bodies, q, v, r.f) : 0.0;
-  r.power[2] = friction ? frac::dem::contact_friction(r.list, p, bodies, q, v, r.f) : 0.0;
+  r.power[0] = frac::dem::contact_elastic(r.list, p, bodies, q, v);
+  r.power[1] = damping ? frac::dem::contact_damping(r.list, p, bodies, q, v) : 0.0;
+  r.power[2] = friction ? frac::dem::contact_friction(r.list, p, bodies, q, v) : 0.0;
+  frac::dem::add_contact_forces(r.list, bodies.n, q, r.f);
   return r;
 }
 
@@ -389,9 +390,10 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
       ASSERT_GT(list.size(), 256u) << "the test needs the parallel path";
       auto& f = forces[threads - 1];
       f = f0;
-      powers[threads - 1][0] = frac::dem::contact_elastic(list, p, bodies, s.q, s.v, f);
-      powers[threads - 1][1] = frac::dem::contact_damping(list, p, bodies, s.q, s.v, f);
-      powers[threads - 1][2] = frac::dem::contact_friction(list, p, bodies, s.q, s.v, f);
+      powers[threads - 1][0] = frac::dem::contact_elastic(list, p, bodies, s.q, s.v);
+      powers[threads - 1][1] = frac::dem::contact_damping(list, p, bodies, s.q, s.v);
+      powers[threads - 1][2] = frac::dem::contact_friction(list, p, bodies, s.q, s.v);
+      frac::dem::add_contact_forces(list, n, s.q, f);
     }
     frac::set_threads(1);
     for (std::size_t k = 0; k < 3 * n; ++k)
