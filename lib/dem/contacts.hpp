@@ -13,9 +13,8 @@
 // Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order), the
 // neighbour pairs (circle test, separating edges, overlap geometry; each thread its cells' pairs first) and
 // the contact forces, each written to its own slot; the list is then filled in pair order (each thread its
-// block of pairs, at offsets from the counts of the blocks before it), and each cell gathers its contacts'
-// forces in contact order (through a per-cell index of the neighbour pairs), so results do not depend on
-// the thread count. The overlap of a
+// block of pairs, at offsets from the counts of the blocks before it), and the contacts' forces are added to
+// the cells in contact order, so results do not depend on the thread count. The overlap of a
 // pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell
 // edge, which leave out clip lines that cannot cut.
 #include <array>
@@ -37,12 +36,6 @@ struct PairForce {
   double fx, fy;
 };
 
-// One end of a neighbour pair, in a cell's list of its pairs.
-struct CellLink {
-  std::int32_t pair;
-  std::int32_t end;  // 0: the cell is the pair's i, 1: its j
-};
-
 struct ContactList {
   std::vector<std::int32_t> i, j;
   std::vector<double> rx, ry;   // application point R, m
@@ -54,12 +47,6 @@ struct ContactList {
   // each term adds its own), and scratch for the power of the last term (one slot per contact).
   std::vector<PairForce> pair_force;
   std::vector<double> pair_power;
-  // Per-cell index of the contacts, set by ContactSearch::find (empty for a list built by hand): cell c's
-  // neighbour pairs are cell_links[cell_start[c] .. cell_start[c + 1]) in pair order, and contact_of_pair
-  // gives a pair's contact, or −1. A cell meets its contacts in contact order, as a sum over the list does.
-  std::span<const std::int32_t> cell_start;
-  std::span<const CellLink> cell_links;
-  std::span<const std::int32_t> contact_of_pair;
   std::size_t size() const { return i.size(); }
   void clear();
   // Makes room for `count` contacts (entries not yet set; new pair forces zero) and zeroes the diagnostics.
@@ -110,10 +97,6 @@ class ContactSearch {
   };
   std::vector<NeighbourPair> neighbours_;
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
-  void index_pairs();                         // the per-cell lists of neighbour pairs, below
-  std::vector<std::int32_t> cell_pair_start_;  // cell c's pairs: cell_links_[start[c] .. start[c + 1])
-  std::vector<CellLink> cell_links_;
-  std::vector<std::int32_t> contact_of_pair_;  // per pair: its contact in the last list, or −1
   struct Block {  // one thread's block of pairs in the list fill
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
     std::int64_t offset = 0;                                   // its first entry in the list

@@ -364,10 +364,9 @@ TEST(DemContacts, SearchFindsEveryOverlappingPair) {
   }
 }
 
-// With more than one thread each cell gathers its contacts' forces through the list's per-cell index; on one
-// thread the forces are summed over the list. Both add each contact to a cell in contact order, so the forces,
-// torques and powers are the same bits, after forces already on the cells (as the beams leave them) and for
-// every term. (More than 256 contacts: fewer are summed on one thread whatever the thread count.)
+// The search, the three terms and the sum over the contacts on one and on two threads: the forces, torques and
+// powers are the same bits, after forces already on the cells (as the beams leave them) and for every term.
+// (More than 256 contacts: fewer run on one thread whatever the thread count.)
 TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
   for (std::uint64_t seed : {1u, 2u}) {
     const Sample s = random_overlaps(seed, 0.15);
