@@ -151,13 +151,16 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
   // The verdicts in parallel (each beam its own slot), then the active list compacted in order: the same
   // bits whatever the thread count.
   Verdict* verdict = verdict_.data();
-#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
+  bool any = false;
+#pragma omp parallel for schedule(static) if (count > kMinParallelItems) reduction(|| : any)
   for (std::size_t k = 0; k < count; ++k) {
     const auto b = static_cast<std::size_t>(active_[k]);
     const auto i = static_cast<std::size_t>(i_[b]), j = static_cast<std::size_t>(j_[b]);
     verdict[k].mode = breaking_mode(x[j] - x[i], y[j] - y[i], e0x_[b], e0y_[b], phi[i], phi[j], l0_[b], k_[b], t_eps,
                                     t_theta, verdict[k].energy);
+    any = any || verdict[k].mode != 0;
   }
+  if (!any) return;  // most steps: nothing broke, the list stays as it is
   std::size_t kept = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const auto b = static_cast<std::size_t>(active_[k]);
