@@ -208,9 +208,12 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
   return true;
 }
 
-// The overlapping pairs among [first, last) into the list from entry k on, in pair order.
-void ContactSearch::fill_contacts(std::size_t first, std::size_t last, std::size_t k, ContactList& out) {
+// The overlapping pairs among [first, last) into the list from the block's offset on, in pair order, and the
+// block's diagnostics.
+void ContactSearch::fill_contacts(std::size_t first, std::size_t last, Block& block, ContactList& out) {
   const double* inv_d = inv_diameter_.data();
+  auto k = static_cast<std::size_t>(block.offset);
+  std::int64_t enclosed = 0, multi_crossing = 0;  // (counted here, not in the block: the blocks share a line)
   for (std::size_t p = first; p < last; ++p) {
     if (pair_state_[p] != PairState::overlapping) continue;
     const auto& geo = geometry_[p];
@@ -225,8 +228,12 @@ void ContactSearch::fill_contacts(std::size_t first, std::size_t last, std::size
     out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
     out.fn[k] = 0.0;
     out.pair_force[k] = {0.0, 0.0};
+    enclosed += geo.kind == geometry::ContactGeometry::Kind::enclosed;
+    multi_crossing += geo.distinct_crossings > 2;
     ++k;
   }
+  block.enclosed = enclosed;
+  block.multi_crossing = multi_crossing;
 }
 
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
@@ -248,6 +255,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   const auto most = static_cast<std::size_t>(max_threads());
   if (blocks_.size() < most) blocks_.resize(most);
   std::int64_t candidates = 0;
+  std::size_t teams = 1;
   pair_schedule_.reserve(most);
 #pragma omp parallel if (pairs > kMinParallelItems) reduction(+ : candidates)
   {
@@ -263,30 +271,27 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
     const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
     const auto [first, last] = static_range(pairs, t, nt);  // the pairs it tested first
     Block& block = blocks_[t];
-    block = Block{};
-    for (std::size_t p = first; p < last; ++p) {
-      if (pair_state_[p] != PairState::overlapping) continue;
-      ++block.count;
-      block.enclosed += geometry_[p].kind == geometry::ContactGeometry::Kind::enclosed;
-      block.multi_crossing += geometry_[p].distinct_crossings > 2;
-    }
+    std::int64_t count = 0;
+    for (std::size_t p = first; p < last; ++p) count += pair_state_[p] == PairState::overlapping;
+    block = Block{count, 0, 0, 0};
 #pragma omp barrier
 #pragma omp single
     {
-      std::int64_t total = 0, enclosed = 0, multi_crossing = 0;
+      std::int64_t total = 0;
       for (std::size_t b = 0; b < nt; ++b) {
         blocks_[b].offset = total;
         total += blocks_[b].count;
-        enclosed += blocks_[b].enclosed;
-        multi_crossing += blocks_[b].multi_crossing;
       }
       out.resize(static_cast<std::size_t>(total));
-      out.enclosed = enclosed;
-      out.multi_crossing = multi_crossing;
+      teams = nt;
     }
-    fill_contacts(first, last, static_cast<std::size_t>(block.offset), out);
+    fill_contacts(first, last, block, out);
   }
   out.candidate_pairs = candidates;
+  for (std::size_t b = 0; b < teams; ++b) {
+    out.enclosed += blocks_[b].enclosed;
+    out.multi_crossing += blocks_[b].multi_crossing;
+  }
 }
 
 namespace {

@@ -84,7 +84,7 @@ class ContactSearch {
   std::vector<std::int32_t> sorted_;
   void rebuild(std::span<const double> q);
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
-  void fill_contacts(std::size_t first, std::size_t last, std::size_t k, ContactList& out);
+
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when some
   // vertex may have moved by more than skin/2 since the last build (centroid displacement plus bounding
   // radius times rotation), so no pair can start to overlap unseen.
@@ -101,6 +101,7 @@ class ContactSearch {
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
     std::int64_t offset = 0;                                   // its first entry in the list
   };
+  void fill_contacts(std::size_t first, std::size_t last, Block& block, ContactList& out);
   std::vector<Block> blocks_;
   HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
   std::int64_t rebuilds_ = 0;
