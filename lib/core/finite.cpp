@@ -24,15 +24,10 @@ double zero_sum(const double* p, std::size_t first, std::size_t last) {
 bool all_finite(std::span<const double> x, std::size_t blocks) { return all_finite(x, {}, blocks); }
 
 bool all_finite(std::span<const double> x, std::span<const double> y, std::size_t blocks) {
-  auto sum = [&](std::size_t first, std::size_t last) {
-    return zero_sum(x.data(), first, std::min(last, x.size())) + zero_sum(y.data(), first, std::min(last, y.size()));
-  };
-  const std::size_t n = std::max(x.size(), y.size());
-  if (n <= kMinParallelCoordinates) return sum(0, n) == 0.0;
-  double s = 0;
-#pragma omp parallel reduction(+ : s)
-  this_thread_coordinate_ranges(n, blocks, [&](std::size_t first, std::size_t last) { s += sum(first, last); });
-  return s == 0.0;
+  return sum_over_coordinate_ranges(std::max(x.size(), y.size()), blocks, [&](std::size_t first, std::size_t last) {
+           return zero_sum(x.data(), first, std::min(last, x.size())) +
+                  zero_sum(y.data(), first, std::min(last, y.size()));
+         }) == 0.0;
 }
 
 }  // namespace frac

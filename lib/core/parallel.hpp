@@ -93,4 +93,16 @@ void for_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
   this_thread_coordinate_ranges(n, blocks, range);
 }
 
+// The same loop with a sum: range(first, last) returns a double, and the results are added. The order of
+// the additions depends on the thread count: only for sums that are exact in any order (Σ x·0, which is 0
+// or NaN: the finiteness checks).
+template <class Body>
+double sum_over_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
+  if (n <= kMinParallelCoordinates) return range(std::size_t{0}, n);
+  double sum = 0;
+#pragma omp parallel reduction(+ : sum)
+  this_thread_coordinate_ranges(n, blocks, [&](std::size_t first, std::size_t last) { sum += range(first, last); });
+  return sum;
+}
+
 }  // namespace frac

@@ -84,7 +84,6 @@ class ContactSearch {
   std::vector<std::int32_t> sorted_;
   void rebuild(std::span<const double> q);
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
-
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when some
   // vertex may have moved by more than skin/2 since the last build (centroid displacement plus bounding
   // radius times rotation), so no pair can start to overlap unseen.

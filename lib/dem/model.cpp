@@ -61,7 +61,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   double* force = force_.data();
   // The per-coordinate loops run on the threads split as the integrator's and the per-cell loops split
   // them (for_coordinate_ranges), so each thread finds the values where it left them.
-  for_coordinate_ranges(n, 3, [&](std::size_t first, std::size_t last) {
+  for_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
 #pragma omp simd
     for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
   });
@@ -77,8 +77,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   // non-finite force is traced to the first term that made it (the run stops at this step).
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();
-  double zero = 0;
-  auto accelerate = [&](std::size_t first, std::size_t last) {
+  const double zero = sum_over_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
     double z = 0;
 #pragma omp simd reduction(+ : z)
     for (std::size_t k = first; k < last; ++k) {
@@ -86,13 +85,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       z += force[k] * 0.0;
     }
     return z;
-  };
-  if (n <= kMinParallelCoordinates) {
-    zero = accelerate(0, n);
-  } else {
-#pragma omp parallel reduction(+ : zero)
-    this_thread_coordinate_ranges(n, 3, [&](std::size_t first, std::size_t last) { zero += accelerate(first, last); });
-  }
+  });
   if (zero != 0.0 && non_finite_term_ == Term::count) blame_non_finite(q, v);
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {
