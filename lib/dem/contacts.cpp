@@ -134,7 +134,7 @@ void ContactSearch::rebuild(std::span<const double> q) {
           const Vec2 dij(dx, dy);
           out.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                          static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
-                         static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false});
+                         static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false, {}});
         }
       }
     }
@@ -199,6 +199,7 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
   hint.edge_j = static_cast<std::size_t>(pair.edge_j);
   hint.reach_i = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[i]) + hint.edge_i];
   hint.reach_j = edge_reach_[static_cast<std::size_t>(mesh_->vertex_offset[j]) + hint.edge_j];
+  hint.lines = &pair.lines;
   const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), bodies_->length_scale, hint);
   pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
   if (pair.overlapping) {

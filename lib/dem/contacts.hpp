@@ -93,6 +93,7 @@ class ContactSearch {
     std::int32_t i, j;
     std::int32_t edge_i, edge_j;  // the facing edges that last separated the pair (first vertex index)
     bool overlapping;             // the pair overlapped at the last search
+    geometry::OverlapLines lines; // the lines of its last overlap (convex_overlap's cache)
   };
   std::vector<NeighbourPair> neighbours_;
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers

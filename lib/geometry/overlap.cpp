@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "core/error.hpp"
@@ -163,6 +164,120 @@ Vec2 centre_normal(const Vec2& dc) {
   return Vec2(1.0, 0.0);
 }
 
+// The edges of both polygons as lines in the local frame about o, by label (0..n-1 the edges of P_i, n + b
+// edge b of P_j): first vertex (ax, ay) and direction d = p_{k+1} − p_k, computed when asked for.
+struct PairEdges {
+  std::span<const Vec2> pi, pj;
+  double ox, oy;
+  int n, m;
+  double tol, tol2;  // the margin of a regular overlap, and its square
+  struct Line {
+    double ax, ay, dx, dy;
+  };
+  bool of_j(int l) const { return l >= n; }
+  int next(int l) const { return l < n ? (l + 1 == n ? 0 : l + 1) : (l + 1 == n + m ? n : l + 1); }
+  Line line(int l) const {
+    const bool j = l >= n;
+    const std::span<const Vec2> p = j ? pj : pi;
+    const auto k = static_cast<std::size_t>(j ? l - n : l);
+    const Vec2& a = p[k];
+    const Vec2& b = p[k + 1 == p.size() ? 0 : k + 1];
+    const double ax = a.x() - ox, ay = a.y() - oy;
+    return {ax, ay, (b.x() - ox) - ax, (b.y() - oy) - ay};
+  }
+  // (x, y) more than tol inside every edge line of P_j (j) or of P_i.
+  bool inside_polygon(double x, double y, bool j) const {
+    const std::span<const Vec2> p = j ? pj : pi;
+    double ax = p.back().x() - ox, ay = p.back().y() - oy;
+    bool ok = true;
+    for (const Vec2& q : p) {
+      const double bx = q.x() - ox, by = q.y() - oy;
+      const double dx = bx - ax, dy = by - ay;
+      const double s = dx * (y - ay) - dy * (x - ax);
+      ok &= (s > 0.0) & (s * s > tol2 * (dx * dx + dy * dy));
+      ax = bx;
+      ay = by;
+    }
+    return ok;
+  }
+};
+
+// Most vertices of an overlap polygon computed from its lines (beyond: clipping's conventions).
+constexpr std::size_t kMaxRegularVertices = std::tuple_size_v<decltype(OverlapLines::label)>;
+
+// The vertices of the polygon bounded by the lines `label` [0, K) in order (edge k on line label[k], vertex k
+// = line label[k−1] ∩ line label[k]; a corner of one polygon is that vertex itself) into v, when the polygon
+// is regular (convex_overlap): false otherwise. Every turn is to the left, every edge runs along its line and
+// is longer than tol, a crossing lies on both its edges more than tol from their ends, a corner of one
+// polygon more than tol inside every edge line of the other. Such a polygon (convex: checked for five
+// vertices or more, where turns to the left could wind twice) is P_i ∩ P_j: its vertices lie in both, and it
+// is the intersection of the half-planes of its own edges, each of which contains P_i ∩ P_j.
+bool regular_vertices(const PairEdges& edges, const int* label, std::size_t K, Vec2* v) {
+  std::array<PairEdges::Line, kMaxRegularVertices> line;
+  for (std::size_t k = 0; k < K; ++k) line[k] = edges.line(label[k]);
+  int switches = 0;
+  bool ok = true;
+  for (std::size_t k = 0; k < K; ++k) {
+    const std::size_t k0 = k == 0 ? K - 1 : k - 1;
+    const PairEdges::Line& a = line[k0];
+    const PairEdges::Line& b = line[k];
+    if (edges.next(label[k0]) == label[k]) {  // a corner of one polygon
+      v[k] = Vec2(b.ax, b.ay);
+      ok &= edges.inside_polygon(b.ax, b.ay, !edges.of_j(label[k]));
+      continue;
+    }
+    ++switches;
+    // A crossing: a left turn by more than ~1e-12 rad (the intersection is well defined), on both edges:
+    // at s_b/den along b and s_a/den along a, each more than tol from the ends.
+    const double den = a.dx * b.dy - a.dy * b.dx;
+    const double la = std::sqrt(a.dx * a.dx + a.dy * a.dy), lb = std::sqrt(b.dx * b.dx + b.dy * b.dy);
+    if (!(den > 1e-12 * la * lb)) return false;
+    const double rx = a.ax - b.ax, ry = a.ay - b.ay;
+    const double sb = a.dx * ry - a.dy * rx, sa = b.dx * ry - b.dy * rx;
+    const double margin_b = edges.tol * den / lb, margin_a = edges.tol * den / la;
+    ok &= (sb > margin_b) & (den - sb > margin_b) & (sa > margin_a) & (den - sa > margin_a);
+    const double t = sb / den;
+    v[k] = Vec2(b.ax + t * b.dx, b.ay + t * b.dy);
+  }
+  if (switches != 2 || !ok) return false;
+  for (std::size_t k = 0; k < K; ++k) {
+    const Vec2 e = v[k + 1 == K ? 0 : k + 1] - v[k];
+    ok &= (e.x() * line[k].dx + e.y() * line[k].dy > 0.0) & (e.squaredNorm() > edges.tol2);
+  }
+  if (K >= 5) {
+    for (std::size_t k = 0; k < K; ++k) {
+      for (std::size_t e = 0; e < K; ++e) {
+        if (e == k || e + 1 == k || (e + 1 == K && k == 0)) continue;  // the vertex's own lines
+        ok &= line[e].dx * (v[k].y() - line[e].ay) - line[e].dy * (v[k].x() - line[e].ax) > 0.0;
+      }
+    }
+  }
+  return ok;
+}
+
+// The contact geometry of a regular overlap polygon from its lines and vertices (local frame about o).
+ContactGeometry regular_contact(const PairEdges& edges, const int* label, const Vec2* v, std::size_t K, const Vec2& o,
+                                const Vec2& dc, double eps_area) {
+  ContactGeometry r;
+  double twice = 0.0;
+  for (std::size_t k = 1; k + 1 < K; ++k) twice += cross(v[k] - v[0], v[k + 1] - v[0]);
+  const double area = 0.5 * twice;
+  if (!(area > eps_area)) return r;
+  std::array<Vec2, 2> crossing;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < K; ++k) {
+    if (edges.of_j(label[k == 0 ? K - 1 : k - 1]) != edges.of_j(label[k])) crossing[count++] = v[k];
+  }
+  r.kind = ContactGeometry::Kind::line;
+  r.area = area;
+  r.crossings = r.distinct_crossings = 2;
+  r.p1 = crossing[0] + o;
+  r.p2 = crossing[1] + o;
+  r.point = 0.5 * (crossing[0] + crossing[1]) + o;
+  r.normal = line_normal(crossing[0], crossing[1], dc);
+  return r;
+}
+
 ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
                              double g, std::size_t first_clip_edge, const OverlapHint* hint,
                              OverlapPolygon* overlap) {
@@ -174,13 +289,42 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   if (!(g > 0.0) || !std::isfinite(g)) throw InputError("convex_overlap: length scale must be positive and finite");
   ContactGeometry r;
   if (overlap) overlap->size = 0;
+  OverlapLines* const cache = hint ? hint->lines : nullptr;
+  const std::size_t cached = cache ? cache->size : 0;
+  if (cache) cache->size = 0;  // until a regular overlap is found below
   if (n < 3 || m < 3) return r;
   const double eps_area = kOverlapAreaTolerance * g * g;
   const double eps_len = kCrossingMergeTolerance * g;
+  const double tol = 4 * eps_len;  // the margins of a regular overlap
 
   // Local frame at P_i's first vertex: the differences of nearby coordinates are exact, so the
   // result does not depend on the distance from the origin.
   const Vec2 o = pi[0];
+  const Vec2 dc = cj - ci;
+  const PairEdges edges{pi, pj, o.x(), o.y(), static_cast<int>(n), static_cast<int>(m), tol, tol * tol};
+  std::array<int, kMaxRegularVertices> label;
+  std::array<Vec2, kMaxRegularVertices> lv;
+  auto regular_result = [&](std::size_t K) {
+    if (overlap) {
+      overlap->size = K;
+      for (std::size_t k = 0; k < K; ++k) overlap->vertex[k] = lv[k] + o;
+    }
+    return regular_contact(edges, label.data(), lv.data(), K, o, dc, eps_area);
+  };
+  // The lines of the pair's last overlap, if they still make a regular polygon: it is the overlap, no
+  // clipping needed.
+  if (cached >= 3 && cached <= kMaxRegularVertices) {
+    bool known = true;
+    for (std::size_t k = 0; k < cached; ++k) {
+      label[k] = cache->label[k];
+      known &= label[k] < static_cast<int>(n + m);
+    }
+    if (known && regular_vertices(edges, label.data(), cached, lv.data())) {
+      cache->size = static_cast<std::uint8_t>(cached);
+      return regular_result(cached);
+    }
+  }
+
   std::array<Vec2, kMaxContactPolygonVertices> li, lj;
   LabelledPolygon buf_a, buf_b;
   LabelledPolygon* cur = &buf_a;
@@ -219,6 +363,19 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   const LabelledPolygon& P = *cur;
   const std::size_t K = P.size;
   if (K < 3) return r;
+  // A regular overlap: its lines in order from the lowest label, its vertices from them.
+  if (K <= kMaxRegularVertices) {
+    std::size_t start = 0;
+    for (std::size_t k = 1; k < K; ++k) start = P.label[k] < P.label[start] ? k : start;
+    for (std::size_t k = 0; k < K; ++k) label[k] = P.label[start + k < K ? start + k : start + k - K];
+    if (regular_vertices(edges, label.data(), K, lv.data())) {
+      if (cache) {
+        cache->size = static_cast<std::uint8_t>(K);
+        for (std::size_t k = 0; k < K; ++k) cache->label[k] = static_cast<std::uint8_t>(label[k]);
+      }
+      return regular_result(K);
+    }
+  }
   const std::span<const Vec2> pv(P.v.data(), K);
   if (overlap) {
     overlap->size = K;
@@ -227,7 +384,6 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   const double area = signed_area(pv);
   if (!(area > eps_area)) return r;
   r.area = area;
-  const Vec2 dc = cj - ci;
 
   // Crossings: vertices where the edge label switches between P_i and P_j, moved to the midpoint of
   // any run of shared edges around them.

@@ -4,6 +4,7 @@
 // unit normal n. Allocation-free: all work is done in fixed-capacity buffers on the stack.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include "geometry/vec2.hpp"
@@ -73,20 +74,42 @@ struct ContactGeometry {
 //   which makes the answer symmetric under i <-> j.
 // - n·(c_j - c_i) == 0 exactly for a contact line: n is the perpendicular whose first nonzero
 //   component is positive.
+// - Regular overlaps (the usual case) are computed from their lines. The clipped polygon is regular when it
+//   has at most 8 vertices on as many different lines, every corner turns left, every edge runs along its line
+//   and is longer than tol = 4 eps_L, a crossing of the boundaries lies on both its edges more than tol from
+//   their ends, a corner of one polygon lies more than tol inside every edge line of the other, and the
+//   boundaries cross exactly twice. Each vertex is then the intersection of its two lines (or a polygon's
+//   corner itself), A_ov comes from the shoelace formula about the vertex on the line of lowest label, and P1,
+//   P2 are the two vertices where the boundary changes owner. No shared edge, no cancellation and no corner
+//   poking through can occur then: the conventions above give the same answer up to round-off. Because the
+//   result depends on the lines alone, it is the same bit for bit whatever the path (the clip order, a hint,
+//   cached lines); an irregular overlap's result may depend on the clip order at round-off.
 // Throws InputError if a polygon has more than kMaxContactPolygonVertices vertices or g is not > 0.
 // `first_clip_edge`: the edge of P_j to clip by first (a hint for speed: the one facing P_i; the
 // result is the same up to round-off whatever the hint).
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, std::size_t first_clip_edge = 0);
 
+// The lines that bound a pair's overlap polygon, in order around it, as the last evaluation of the pair found
+// them (edge labels: 0..n-1 the edges of P_i, n + b edge b of P_j; size 0: none known). A caller that keeps
+// one per pair and hands it back in the hint lets an overlap that keeps its shape skip the clipping.
+struct OverlapLines {
+  std::uint8_t size = 0;
+  std::array<std::uint8_t, 8> label{};
+};
+
 // A faster path for cells of a mesh, with the same result bit for bit: the facing edges of P_i and P_j
 // (first vertex index; P_j is clipped by its facing edge first) and their reaches (edge_reach of the
 // polygons, which a rigid motion does not change; 0: no reach known). When the overlap lies within the
 // reach of a facing edge, the lines of that polygon's other edges are left out: they can neither cut it
-// nor come within eps_L of it.
+// nor come within eps_L of it. With `lines`: the lines of a regular overlap are kept there; the next call
+// intersects them first and checks the polygon they make (a regular polygon whose vertices lie inside both
+// polygons is the overlap), and clips only when the check fails. Most overlaps of a time step keep their
+// lines from the step before.
 struct OverlapHint {
   std::size_t edge_i = 0, edge_j = 0;
   double reach_i = 0.0, reach_j = 0.0;  // m
+  OverlapLines* lines = nullptr;        // the pair's cache, read and updated; none: always clip
 };
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, const OverlapHint& hint);

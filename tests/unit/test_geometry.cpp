@@ -817,3 +817,49 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
   // The crossing is the middle of the short edge, half of 1e-12 in from the side.
   EXPECT_EQ(std::min(plain.p1.x(), plain.p2.x()), 0.5 * ((1 - 1e-12) + 1.0));
 }
+
+// A pair's cache of the lines of its last overlap (the contact search keeps one per neighbour pair) changes the
+// work, not the result: cells of a random lattice random-walk for 60 steps, each bonded pair carrying its
+// cache from step to step (and, every seventh step, another pair's cache instead of its own), and every
+// result equals the one computed without hint or cache (clipping in the same order), bit for bit. Most overlaps keep their lines from one
+// step to the next, so most evaluations use the cache.
+TEST(Overlap, CachedLinesGiveTheSameResultBitForBit) {
+  frac::mesh::RandomLatticeOptions o;
+  o.shape = "rect";
+  o.nx = o.ny = 10;
+  o.width = o.height = 10 * 0.0107;
+  o.seed = 8;
+  const auto mesh = frac::mesh::make_random_lattice(o);
+  const std::size_t n = mesh.cells();
+  const double g = mesh.spacing;
+  frac::Rng rng(21);
+  std::vector<Vec2> centre(mesh.centroid.begin(), mesh.centroid.end());
+  std::vector<double> phi(n, 0.0);
+  std::vector<frac::geometry::OverlapLines> cache(mesh.beam.size());
+  int overlapping = 0, kept = 0;
+  for (int step = 0; step < 60; ++step) {
+    std::vector<std::vector<Vec2>> world(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      centre[k] += 2e-4 * g * Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
+      phi[k] += 2e-4 * rng.uniform(-1, 1);
+      const double c = std::cos(phi[k]), s = std::sin(phi[k]);
+      for (const Vec2& p : mesh.polygon(k)) world[k].push_back(centre[k] + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+    }
+    for (std::size_t b = 0; b < mesh.beam.size(); ++b) {
+      const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
+      frac::geometry::OverlapHint hint = facing_hint(world[i], world[j]);
+      frac::geometry::OverlapLines lines = step % 7 == 3 ? cache[(b + 1) % cache.size()] : cache[b];
+      const frac::geometry::OverlapLines before = lines;
+      hint.lines = &lines;
+      const auto fast = convex_overlap(world[i], world[j], centre[i], centre[j], g, hint);
+      const auto plain = convex_overlap(world[i], world[j], centre[i], centre[j], g, hint.edge_j);
+      ASSERT_TRUE(same_bits(fast, plain)) << "step " << step << " beam " << b;
+      cache[b] = lines;
+      if (plain.kind == Kind::none) continue;
+      ++overlapping;
+      kept += before.size >= 3 && before.size == lines.size && before.label == lines.label;
+    }
+  }
+  EXPECT_GT(overlapping, 5000);
+  EXPECT_GT(kept, overlapping / 2);
+}
