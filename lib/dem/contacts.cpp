@@ -75,8 +75,14 @@ bool ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
 void ContactSearch::rebuild(std::span<const double> q) {
   ++rebuilds_;
   ref_.assign(q.begin(), q.end());
-  neighbours_.clear();
   const std::size_t n = bodies_->n;
+  // The old list, indexed by its first cell, so that a pair found again keeps what it has learnt (its
+  // separating edges, whether it overlapped, the lines of its overlap): the same results, less work.
+  std::swap(previous_, neighbours_);
+  neighbours_.clear();
+  previous_first_.assign(n + 1, 0);
+  for (const auto& pair : previous_) ++previous_first_[static_cast<std::size_t>(pair.i) + 1];
+  for (std::size_t i = 0; i < n; ++i) previous_first_[i + 1] += previous_first_[i];
   const double* x = q.data();
   const double* y = x + n;
   // Cell list: grid cells of side 2·max bounding radius, so every overlapping pair sits in the same or
@@ -131,6 +137,13 @@ void ContactSearch::rebuild(std::span<const double> q) {
           const double dx = x[j] - x[i], dy = y[j] - y[i];
           const double reach = r[i] + r[j] + skin_;
           if (dx * dx + dy * dy >= reach * reach) continue;
+          const auto* const begin = previous_.data() + previous_first_[i];
+          const auto* const end = previous_.data() + previous_first_[i + 1];
+          const auto* const known = std::find_if(begin, end, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
+          if (known != end) {
+            out.push_back(*known);
+            continue;
+          }
           const Vec2 dij(dx, dy);
           out.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                          static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),

@@ -96,6 +96,8 @@ class ContactSearch {
     geometry::OverlapLines lines; // the lines of its last overlap (convex_overlap's cache)
   };
   std::vector<NeighbourPair> neighbours_;
+  std::vector<NeighbourPair> previous_;       // the list before the last rebuild
+  std::vector<std::int32_t> previous_first_;  // its first pair of each cell i (pairs are in order of i)
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
   struct Block {  // one thread's block of pairs in the list fill
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics

@@ -185,8 +185,34 @@ struct PairEdges {
     const double ax = a.x() - ox, ay = a.y() - oy;
     return {ax, ay, (b.x() - ox) - ax, (b.y() - oy) - ay};
   }
+  // A facing edge of each polygon (P_i's first) whose reach leaves room for the margin: within the reach of
+  // its midpoint, every line of that polygon but the edge's own and its two neighbours' is more than
+  // 1e-3 reach > tol away (edge_reach), so those three lines decide.
+  struct Near {
+    int edge = -1;  // none
+    double mx = 0, my = 0, reach2 = 0;
+  };
+  std::array<Near, 2> near;
+  void set_near(bool j, std::size_t edge, double reach) {
+    const std::span<const Vec2> p = j ? pj : pi;
+    if (edge >= p.size() || !(reach > 1e3 * tol)) return;
+    const Vec2& a = p[edge];
+    const Vec2& b = p[edge + 1 == p.size() ? 0 : edge + 1];
+    near[j] = {static_cast<int>(edge) + (j ? n : 0), 0.5 * ((a.x() - ox) + (b.x() - ox)), 0.5 * ((a.y() - oy) + (b.y() - oy)),
+               reach * reach};
+  }
+  // (x, y) more than tol inside the line.
+  static bool inside(double x, double y, const Line& l, double tol2) {
+    const double s = l.dx * (y - l.ay) - l.dy * (x - l.ax);
+    return (s > 0.0) & (s * s > tol2 * (l.dx * l.dx + l.dy * l.dy));
+  }
   // (x, y) more than tol inside every edge line of P_j (j) or of P_i.
   bool inside_polygon(double x, double y, bool j) const {
+    const Near& f = near[j];
+    if (f.edge >= 0 && (x - f.mx) * (x - f.mx) + (y - f.my) * (y - f.my) <= f.reach2) {
+      const int prev = f.edge == (j ? n : 0) ? (j ? n + m - 1 : n - 1) : f.edge - 1;
+      return inside(x, y, line(prev), tol2) & inside(x, y, line(f.edge), tol2) & inside(x, y, line(next(f.edge)), tol2);
+    }
     const std::span<const Vec2> p = j ? pj : pi;
     double ax = p.back().x() - ox, ay = p.back().y() - oy;
     bool ok = true;
@@ -228,14 +254,17 @@ bool regular_vertices(const PairEdges& edges, const int* label, std::size_t K, V
     }
     ++switches;
     // A crossing: a left turn by more than ~1e-12 rad (the intersection is well defined), on both edges:
-    // at s_b/den along b and s_a/den along a, each more than tol from the ends.
+    // at s_b/den along b and s_a/den along a, each more than tol from the ends (s_b·|b| > tol·den, and so on;
+    // compared squared, all terms positive).
     const double den = a.dx * b.dy - a.dy * b.dx;
-    const double la = std::sqrt(a.dx * a.dx + a.dy * a.dy), lb = std::sqrt(b.dx * b.dx + b.dy * b.dy);
-    if (!(den > 1e-12 * la * lb)) return false;
+    const double a2 = a.dx * a.dx + a.dy * a.dy, b2 = b.dx * b.dx + b.dy * b.dy;
+    if (!(den > 0.0 && den * den > 1e-24 * a2 * b2)) return false;
     const double rx = a.ax - b.ax, ry = a.ay - b.ay;
     const double sb = a.dx * ry - a.dy * rx, sa = b.dx * ry - b.dy * rx;
-    const double margin_b = edges.tol * den / lb, margin_a = edges.tol * den / la;
-    ok &= (sb > margin_b) & (den - sb > margin_b) & (sa > margin_a) & (den - sa > margin_a);
+    const double limit = edges.tol2 * den * den;
+    const double eb = den - sb, ea = den - sa;
+    ok &= (sb > 0.0) & (eb > 0.0) & (sa > 0.0) & (ea > 0.0) & (sb * sb * b2 > limit) & (eb * eb * b2 > limit) &
+          (sa * sa * a2 > limit) & (ea * ea * a2 > limit);
     const double t = sb / den;
     v[k] = Vec2(b.ax + t * b.dx, b.ay + t * b.dy);
   }
@@ -278,6 +307,35 @@ ContactGeometry regular_contact(const PairEdges& edges, const int* label, const 
   return r;
 }
 
+// What both paths of convex_overlap share: the local frame about o = P_i's first vertex (the differences of
+// nearby coordinates are exact, so the result does not depend on the distance from the origin), the pair's
+// edges in it, the tolerances, and where a regular overlap's lines and vertices go.
+struct OverlapFrame {
+  OverlapFrame(const PairEdges& e, const Vec2& origin, const Vec2& centres, double area_tol, double len_tol,
+               OverlapPolygon* polygon)
+      : edges(e), o(origin), dc(centres), eps_area(area_tol), eps_len(len_tol), overlap(polygon) {}
+  PairEdges edges;
+  Vec2 o, dc;
+  double eps_area, eps_len;
+  OverlapPolygon* overlap;
+  std::array<int, kMaxRegularVertices> label;  // (filled before use)
+  std::array<Vec2, kMaxRegularVertices> v;
+  // The result of the regular overlap in label/v [0, K).
+  ContactGeometry regular_result(std::size_t K) {
+    if (overlap) {
+      overlap->size = K;
+      for (std::size_t k = 0; k < K; ++k) overlap->vertex[k] = v[k] + o;
+    }
+    return regular_contact(edges, label.data(), v.data(), K, o, dc, eps_area);
+  }
+};
+
+// The overlap by clipping (convex_overlap's method), then from its lines when it is regular (the lines go to
+// `cache`). Kept out of line: its buffers make a large stack frame that the cached path does not need.
+[[gnu::noinline]] ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj,
+                                                  std::size_t first_clip_edge, const OverlapHint* hint,
+                                                  OverlapFrame& f, OverlapLines* cache);
+
 ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
                              double g, std::size_t first_clip_edge, const OverlapHint* hint,
                              OverlapPolygon* overlap) {
@@ -287,44 +345,44 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
                      std::to_string(kMaxContactPolygonVertices) + ")");
   }
   if (!(g > 0.0) || !std::isfinite(g)) throw InputError("convex_overlap: length scale must be positive and finite");
-  ContactGeometry r;
   if (overlap) overlap->size = 0;
   OverlapLines* const cache = hint ? hint->lines : nullptr;
   const std::size_t cached = cache ? cache->size : 0;
-  if (cache) cache->size = 0;  // until a regular overlap is found below
-  if (n < 3 || m < 3) return r;
-  const double eps_area = kOverlapAreaTolerance * g * g;
+  if (cache) cache->size = 0;  // until a regular overlap is found
+  if (n < 3 || m < 3) return {};
   const double eps_len = kCrossingMergeTolerance * g;
   const double tol = 4 * eps_len;  // the margins of a regular overlap
-
-  // Local frame at P_i's first vertex: the differences of nearby coordinates are exact, so the
-  // result does not depend on the distance from the origin.
   const Vec2 o = pi[0];
-  const Vec2 dc = cj - ci;
-  const PairEdges edges{pi, pj, o.x(), o.y(), static_cast<int>(n), static_cast<int>(m), tol, tol * tol};
-  std::array<int, kMaxRegularVertices> label;
-  std::array<Vec2, kMaxRegularVertices> lv;
-  auto regular_result = [&](std::size_t K) {
-    if (overlap) {
-      overlap->size = K;
-      for (std::size_t k = 0; k < K; ++k) overlap->vertex[k] = lv[k] + o;
-    }
-    return regular_contact(edges, label.data(), lv.data(), K, o, dc, eps_area);
-  };
+  OverlapFrame f({pi, pj, o.x(), o.y(), static_cast<int>(n), static_cast<int>(m), tol, tol * tol, {}}, o, cj - ci,
+                 kOverlapAreaTolerance * g * g, eps_len, overlap);
+  if (hint) {
+    f.edges.set_near(false, hint->edge_i, hint->reach_i);
+    f.edges.set_near(true, hint->edge_j, hint->reach_j);
+  }
   // The lines of the pair's last overlap, if they still make a regular polygon: it is the overlap, no
   // clipping needed.
   if (cached >= 3 && cached <= kMaxRegularVertices) {
     bool known = true;
     for (std::size_t k = 0; k < cached; ++k) {
-      label[k] = cache->label[k];
-      known &= label[k] < static_cast<int>(n + m);
+      f.label[k] = cache->label[k];
+      known &= f.label[k] < static_cast<int>(n + m);
     }
-    if (known && regular_vertices(edges, label.data(), cached, lv.data())) {
+    if (known && regular_vertices(f.edges, f.label.data(), cached, f.v.data())) {
       cache->size = static_cast<std::uint8_t>(cached);
-      return regular_result(cached);
+      return f.regular_result(cached);
     }
   }
+  return clipped_overlap(pi, pj, first_clip_edge, hint, f, cache);
+}
 
+ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, std::size_t first_clip_edge,
+                                const OverlapHint* hint, OverlapFrame& f, OverlapLines* cache) {
+  const std::size_t n = pi.size(), m = pj.size();
+  const Vec2& o = f.o;
+  const Vec2& dc = f.dc;
+  const double eps_area = f.eps_area, eps_len = f.eps_len;
+  OverlapPolygon* const overlap = f.overlap;
+  ContactGeometry r;
   std::array<Vec2, kMaxContactPolygonVertices> li, lj;
   LabelledPolygon buf_a, buf_b;
   LabelledPolygon* cur = &buf_a;
@@ -367,13 +425,13 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   if (K <= kMaxRegularVertices) {
     std::size_t start = 0;
     for (std::size_t k = 1; k < K; ++k) start = P.label[k] < P.label[start] ? k : start;
-    for (std::size_t k = 0; k < K; ++k) label[k] = P.label[start + k < K ? start + k : start + k - K];
-    if (regular_vertices(edges, label.data(), K, lv.data())) {
+    for (std::size_t k = 0; k < K; ++k) f.label[k] = P.label[start + k < K ? start + k : start + k - K];
+    if (regular_vertices(f.edges, f.label.data(), K, f.v.data())) {
       if (cache) {
         cache->size = static_cast<std::uint8_t>(K);
-        for (std::size_t k = 0; k < K; ++k) cache->label[k] = static_cast<std::uint8_t>(label[k]);
+        for (std::size_t k = 0; k < K; ++k) cache->label[k] = static_cast<std::uint8_t>(f.label[k]);
       }
-      return regular_result(K);
+      return f.regular_result(K);
     }
   }
   const std::span<const Vec2> pv(P.v.data(), K);
