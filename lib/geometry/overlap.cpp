@@ -421,8 +421,12 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
   const LabelledPolygon& P = *cur;
   const std::size_t K = P.size;
   if (K < 3) return r;
-  // A regular overlap: its lines in order from the lowest label, its vertices from them.
-  if (K <= kMaxRegularVertices) {
+  // A regular overlap: its lines in order from the lowest label, its vertices from them. An edge shorter than
+  // tol/2 here is shorter than tol from the lines as well (the vertices differ by round-off): not regular, no
+  // need to try (the thin slivers of neighbours barely turned against each other).
+  bool short_edge = false;
+  for (std::size_t k = 0; k < K; ++k) short_edge |= (P.v[k + 1 == K ? 0 : k + 1] - P.v[k]).squaredNorm() <= 0.25 * f.edges.tol2;
+  if (K <= kMaxRegularVertices && !short_edge) {
     std::size_t start = 0;
     for (std::size_t k = 1; k < K; ++k) start = P.label[k] < P.label[start] ? k : start;
     for (std::size_t k = 0; k < K; ++k) f.label[k] = P.label[start + k < K ? start + k : start + k - K];
