@@ -139,7 +139,8 @@ void ContactSearch::rebuild(std::span<const double> q) {
           if (dx * dx + dy * dy >= reach * reach) continue;
           const auto* const begin = previous_.data() + previous_first_[i];
           const auto* const end = previous_.data() + previous_first_[i + 1];
-          const auto* const known = std::find_if(begin, end, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
+          const auto* const known =
+              std::find_if(begin, end, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
           if (known != end) {
             out.push_back(*known);
             continue;

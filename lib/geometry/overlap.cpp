@@ -198,8 +198,8 @@ struct PairEdges {
     if (edge >= p.size() || !(reach > 1e3 * tol)) return;
     const Vec2& a = p[edge];
     const Vec2& b = p[edge + 1 == p.size() ? 0 : edge + 1];
-    near[j] = {static_cast<int>(edge) + (j ? n : 0), 0.5 * ((a.x() - ox) + (b.x() - ox)), 0.5 * ((a.y() - oy) + (b.y() - oy)),
-               reach * reach};
+    near[j] = {static_cast<int>(edge) + (j ? n : 0), 0.5 * ((a.x() - ox) + (b.x() - ox)),
+               0.5 * ((a.y() - oy) + (b.y() - oy)), reach * reach};
   }
   // (x, y) more than tol inside the line.
   static bool inside(double x, double y, const Line& l, double tol2) {
@@ -425,7 +425,8 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
   // tol/2 here is shorter than tol from the lines as well (the vertices differ by round-off): not regular, no
   // need to try (the thin slivers of neighbours barely turned against each other).
   bool short_edge = false;
-  for (std::size_t k = 0; k < K; ++k) short_edge |= (P.v[k + 1 == K ? 0 : k + 1] - P.v[k]).squaredNorm() <= 0.25 * f.edges.tol2;
+  for (std::size_t k = 0; k < K; ++k)
+    short_edge |= (P.v[k + 1 == K ? 0 : k + 1] - P.v[k]).squaredNorm() <= 0.25 * f.edges.tol2;
   if (K <= kMaxRegularVertices && !short_edge) {
     std::size_t start = 0;
     for (std::size_t k = 1; k < K; ++k) start = P.label[k] < P.label[start] ? k : start;

@@ -709,6 +709,16 @@ namespace {
   return ::testing::AssertionSuccess();
 }
 
+// A random lattice of side × side cells, 1.07 cm apart.
+frac::mesh::CellMesh square_lattice(int side, std::uint64_t seed) {
+  frac::mesh::RandomLatticeOptions o;
+  o.shape = "rect";
+  o.nx = o.ny = side;
+  o.width = o.height = side * 0.0107;
+  o.seed = seed;
+  return frac::mesh::make_random_lattice(o);
+}
+
 // The contact search's hint for two polygons: the edges facing each other's centroid and their reaches.
 frac::geometry::OverlapHint facing_hint(const Polygon& pi, const Polygon& pj) {
   const Vec2 ci = geo::centroid(pi), cj = geo::centroid(pj);
@@ -726,12 +736,7 @@ frac::geometry::OverlapHint facing_hint(const Polygon& pi, const Polygon& pj) {
 // every field bit for bit, for cells of a random lattice moved apart, into slivers and into deep
 // overlaps, with the facing edges and with edges that face away.
 TEST(Overlap, HintGivesTheSameResultBitForBit) {
-  frac::mesh::RandomLatticeOptions o;
-  o.shape = "rect";
-  o.nx = o.ny = 12;
-  o.width = o.height = 12 * 0.0107;
-  o.seed = 3;
-  const auto mesh = frac::mesh::make_random_lattice(o);
+  const auto mesh = square_lattice(12, 3);
   const std::size_t n = mesh.cells();
   const double g = mesh.spacing;
   std::vector<double> reach(mesh.vertex.size());
@@ -821,15 +826,10 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
 // A pair's cache of the lines of its last overlap (the contact search keeps one per neighbour pair) changes the
 // work, not the result: cells of a random lattice random-walk for 60 steps, each bonded pair carrying its
 // cache from step to step (and, every seventh step, another pair's cache instead of its own), and every
-// result equals the one computed without hint or cache (clipping in the same order), bit for bit. Most overlaps keep their lines from one
-// step to the next, so most evaluations use the cache.
+// result equals the one computed without hint or cache (clipping in the same order), bit for bit. Most
+// overlaps keep their lines from one step to the next, so most evaluations use the cache.
 TEST(Overlap, CachedLinesGiveTheSameResultBitForBit) {
-  frac::mesh::RandomLatticeOptions o;
-  o.shape = "rect";
-  o.nx = o.ny = 10;
-  o.width = o.height = 10 * 0.0107;
-  o.seed = 8;
-  const auto mesh = frac::mesh::make_random_lattice(o);
+  const auto mesh = square_lattice(10, 8);
   const std::size_t n = mesh.cells();
   const double g = mesh.spacing;
   frac::Rng rng(21);
@@ -843,7 +843,8 @@ TEST(Overlap, CachedLinesGiveTheSameResultBitForBit) {
       centre[k] += 2e-4 * g * Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
       phi[k] += 2e-4 * rng.uniform(-1, 1);
       const double c = std::cos(phi[k]), s = std::sin(phi[k]);
-      for (const Vec2& p : mesh.polygon(k)) world[k].push_back(centre[k] + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+      for (const Vec2& p : mesh.polygon(k))
+        world[k].push_back(centre[k] + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
     }
     for (std::size_t b = 0; b < mesh.beam.size(); ++b) {
       const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
