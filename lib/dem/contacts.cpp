@@ -77,7 +77,8 @@ void ContactSearch::rebuild(std::span<const double> q) {
   ref_.assign(q.begin(), q.end());
   const std::size_t n = bodies_->n;
   // The old list, indexed by its first cell, so that a pair found again keeps what it has learnt (its
-  // separating edges, whether it overlapped, the lines of its overlap): the same results, less work.
+  // separating edges, whether it overlapped, the lines of its overlap): less work. (The kept facing edge
+  // sets the clip order, which only an irregular overlap's result depends on, at round-off.)
   std::swap(previous_, neighbours_);
   neighbours_.clear();
   previous_first_.assign(n + 1, 0);

@@ -176,6 +176,7 @@ struct PairEdges {
   };
   bool of_j(int l) const { return l >= n; }
   int next(int l) const { return l < n ? (l + 1 == n ? 0 : l + 1) : (l + 1 == n + m ? n : l + 1); }
+  int prev(int l) const { return l < n ? (l == 0 ? n - 1 : l - 1) : (l == n ? n + m - 1 : l - 1); }
   Line line(int l) const {
     const bool j = l >= n;
     const std::span<const Vec2> p = j ? pj : pi;
@@ -210,8 +211,8 @@ struct PairEdges {
   bool inside_polygon(double x, double y, bool j) const {
     const Near& f = near[j];
     if (f.edge >= 0 && (x - f.mx) * (x - f.mx) + (y - f.my) * (y - f.my) <= f.reach2) {
-      const int prev = f.edge == (j ? n : 0) ? (j ? n + m - 1 : n - 1) : f.edge - 1;
-      return inside(x, y, line(prev), tol2) & inside(x, y, line(f.edge), tol2) & inside(x, y, line(next(f.edge)), tol2);
+      return inside(x, y, line(prev(f.edge)), tol2) & inside(x, y, line(f.edge), tol2) &
+             inside(x, y, line(next(f.edge)), tol2);
     }
     const std::span<const Vec2> p = j ? pj : pi;
     double ax = p.back().x() - ox, ay = p.back().y() - oy;
