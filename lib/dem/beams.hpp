@@ -34,6 +34,8 @@ class Beams {
   // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque) and returns
   // the power they deliver at velocities v (W) into *power if given.
   void add_forces(std::span<const double> q, std::span<double> f) const;
+  // The same forces written into f, replacing what is there (the same bits as add_forces onto zeros).
+  void set_forces(std::span<const double> q, std::span<double> f) const;
   // Elastic energy of the intact beams at q, J.
   double energy(std::span<const double> q) const;
   // Strain of every beam at q (broken beams too, for pictures).
@@ -46,6 +48,8 @@ class Beams {
   void remove_all();
 
  private:
+  // add_forces (add) or set_forces.
+  void forces(std::span<const double> q, std::span<double> f, bool add) const;
   BeamResponse response(std::size_t b, std::span<const double> q) const;
   std::size_t n_ = 0;  // cells
   std::vector<std::int32_t> i_, j_;

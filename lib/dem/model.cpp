@@ -61,15 +61,23 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   double* force = force_.data();
   // The per-coordinate loops run on the threads split as the integrator's and the per-cell loops split
   // them (for_coordinate_ranges), so each thread finds the values where it left them.
-  for_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+  // The beams, when on, come first and write the forces (no pass to zero them first: a loop fewer).
+  const bool beams_write = !terms_.empty() && terms_.front() == Term::beams;
+  if (!beams_write) {
+    for_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
 #pragma omp simd
-    for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
-  });
+      for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
+    });
+  }
   power_.fill(0.0);
   const bool contact_list = physics_.contacts;
   if (contact_list) search_.find(q, contacts_);
   for (const Term term : terms_) {
     ++calls_[static_cast<std::size_t>(term)];
+    if (term == Term::beams && beams_write) {
+      beams_.set_forces(q, force_);  // (delivers its power through the beam energy, not bookkept as work)
+      continue;
+    }
     power_[static_cast<std::size_t>(term)] = add_term(term, q, v);
   }
   if (contact_list) add_contact_forces(contacts_, bodies_.n, q, force_);  // the contact terms' forces, summed

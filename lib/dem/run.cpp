@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "core/finite.hpp"
 
 namespace frac::dem {
 namespace {
@@ -129,7 +128,7 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     }
     ledger.boundary += 0.5 * (previous_boundary_power + model.boundary_power()) * dt;
     previous_boundary_power = model.boundary_power();
-    if (model.non_finite_term() != Term::count || !all_finite(integrator.q(), integrator.v(), model.coordinate_blocks()))
+    if (model.non_finite_term() != Term::count || !integrator.finite())
       throw RuntimeError(blame_non_finite(model, integrator, step));
     if (breaking) {
       const std::size_t before = broken.size();

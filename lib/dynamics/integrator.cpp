@@ -261,19 +261,23 @@ void Gear5::step(System& system) {
   const double half_dt2 = 0.5 * dt_ * dt_;
   double* r5w = r_[5].data();
   const double* a = a_.data();
-  for_coordinate_ranges(n_, system.coordinate_blocks(), [&](std::size_t first, std::size_t last) {
-#pragma omp simd
-    for (std::size_t i = first; i < last; ++i) {
-      const double delta = half_dt2 * a[i] - r2[i];
-      r0[i] += kGearC[0] * delta;
-      r1[i] += kGearC[1] * delta;
-      r2[i] += kGearC[2] * delta;
-      r3[i] += kGearC[3] * delta;
-      r4[i] += kGearC[4] * delta;
-      r5w[i] += kGearC[5] * delta;
-      v[i] = r1[i] * inv_dt;
-    }
-  });
+  // (and whether q and v are finite: Σ (q·0 + v·0) is 0 exactly then, NaN otherwise)
+  finite_ = sum_over_coordinate_ranges(n_, system.coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+              double z = 0;
+#pragma omp simd reduction(+ : z)
+              for (std::size_t i = first; i < last; ++i) {
+                const double delta = half_dt2 * a[i] - r2[i];
+                r0[i] += kGearC[0] * delta;
+                r1[i] += kGearC[1] * delta;
+                r2[i] += kGearC[2] * delta;
+                r3[i] += kGearC[3] * delta;
+                r4[i] += kGearC[4] * delta;
+                r5w[i] += kGearC[5] * delta;
+                v[i] = r1[i] * inv_dt;
+                z += r0[i] * 0.0 + v[i] * 0.0;
+              }
+              return z;
+            }) == 0.0;
   apply_prescribed(system, t_);
   ++steps_;
 }
@@ -313,10 +317,15 @@ void VelocityVerlet::step(System& system) {
   t_ += dt_;
   system.prescribe(t_, q_, v_est_, a_);
   system.accelerations(t_, q_, v_est_, a_);
-  for_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
-#pragma omp simd
-    for (std::size_t i = first; i < last; ++i) v[i] += h * a[i];  // half kick
-  });
+  finite_ = sum_over_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
+              double z = 0;
+#pragma omp simd reduction(+ : z)
+              for (std::size_t i = first; i < last; ++i) {
+                v[i] += h * a[i];  // half kick
+                z += q[i] * 0.0 + v[i] * 0.0;  // (0 exactly while q and v are finite)
+              }
+              return z;
+            }) == 0.0;
   const auto fixed = system.prescribed();
   if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
   ++steps_;

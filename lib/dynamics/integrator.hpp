@@ -79,8 +79,12 @@ class Integrator {
   double dt() const { return dt_; }
   std::size_t size() const { return n_; }
   long long steps() const { return steps_; }
+  // Whether the last step left every integrated coordinate and velocity finite (checked in the step's last
+  // pass over them, at no extra pass; prescribed coordinates follow the scene's motion).
+  bool finite() const { return finite_; }
 
  protected:
+  bool finite_ = true;
   double t_ = 0, dt_ = 0;
   std::size_t n_ = 0;
   long long steps_ = 0;

@@ -411,3 +411,38 @@ TEST(Integrator, PrescribedCoordinatesFollowTheirTrajectory) {
 }
 
 }  // namespace
+
+// finite() says whether the last step left q and v finite: ẍ = +ω²x (unstable) on enough coordinates to
+// run the threaded loops, with one coordinate far ahead of the rest, overflows after some hundreds of
+// steps; finite() must hold while every value is finite and turn false at the step that makes one infinite
+// or NaN, for both schemes.
+class Runaway final : public System {
+ public:
+  void accelerations(double, std::span<const double> q, std::span<const double>, std::span<double> a) override {
+    for (std::size_t i = 0; i < q.size(); ++i) a[i] = q[i];
+  }
+  std::size_t coordinate_blocks() const override { return 3; }
+};
+
+TEST(Integrator, FiniteTellsWhenTheStateOverflows) {
+  for (const auto kind : {IntegratorKind::gear5, IntegratorKind::verlet}) {
+    const std::size_t n = 3 * 1200;  // above kMinParallelCoordinates
+    std::vector<double> q0(n, 1e-3), v0(n, 0.0);
+    q0[n - 7] = 1e300;  // the one that overflows first, in the last thread's part
+    Runaway sys;
+    auto integrator = frac::dynamics::make_integrator(kind);
+    integrator->start(sys, 0.0, 0.5, q0, v0);
+    int steps = 0;
+    bool all_finite = true;
+    while (all_finite && steps < 10000) {
+      integrator->step(sys);
+      ++steps;
+      all_finite = true;
+      for (std::size_t i = 0; i < n; ++i)
+        all_finite &= std::isfinite(integrator->q()[i]) && std::isfinite(integrator->v()[i]);
+      ASSERT_EQ(integrator->finite(), all_finite) << name(kind) << " at step " << steps;
+    }
+    EXPECT_FALSE(all_finite) << name(kind) << ": never overflowed";
+    EXPECT_GT(steps, 1) << name(kind);
+  }
+}
