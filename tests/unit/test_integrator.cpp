@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "dynamics/integrator.hpp"
 
 namespace {
@@ -426,7 +427,7 @@ class Runaway final : public System {
 
 TEST(Integrator, FiniteTellsWhenTheStateOverflows) {
   for (const auto kind : {IntegratorKind::gear5, IntegratorKind::verlet}) {
-    const std::size_t n = 3 * 1200;  // above kMinParallelCoordinates
+    const std::size_t n = 3 * (frac::kMinParallelCoordinates / 3 + 100);  // on the threads
     std::vector<double> q0(n, 1e-3), v0(n, 0.0);
     q0[n - 7] = 1e300;  // the one that overflows first, in the last thread's part
     Runaway sys;
