@@ -31,8 +31,8 @@ class Beams {
   const BeamStiffness& stiffness(std::size_t b) const { return k_[b]; }
   double rest_length(std::size_t b) const { return l0_[b]; }
 
-  // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque) and returns
-  // the power they deliver at velocities v (W) into *power if given.
+  // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque). (Their power
+  // is not bookkept as work: the beam law derives from an energy, which the ledger holds.)
   void add_forces(std::span<const double> q, std::span<double> f) const;
   // The same forces written into f, replacing what is there (the same bits as add_forces onto zeros).
   void set_forces(std::span<const double> q, std::span<double> f) const;

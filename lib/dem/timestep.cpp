@@ -59,19 +59,31 @@ double max_damping_rate(const mesh::CellMesh& mesh, const Material& material, co
   const Bodies bodies = make_bodies(mesh, material);
   const std::size_t n = bodies.n;
   const auto w = inverse_sqrt_masses(bodies);
+  // Each beam's geometry and dashpot constants, once (the power iteration applies the operator hundreds of
+  // times).
+  struct Dashpot {
+    std::size_t i, j;
+    double ex, ey, h, cn, ct;  // axis, half length, m_eff·γ_N and m_eff·γ_T
+  };
+  std::vector<Dashpot> dashpots(mesh.beams());
+  for (std::size_t b = 0; b < mesh.beams(); ++b) {
+    const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
+    const auto d = mesh.centroid[j] - mesh.centroid[i];
+    const double l = d.norm();
+    const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
+    dashpots[b] = {i, j, d.x() / l, d.y() / l, 0.5 * l, m_eff * gn, m_eff * gt};
+  }
   const double lambda = largest_eigenvalue(3 * n, [&](const std::vector<double>& x, std::vector<double>& y) {
     std::fill(y.begin(), y.end(), 0.0);
-    for (std::size_t b = 0; b < mesh.beams(); ++b) {
-      const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
-      const auto d = mesh.centroid[j] - mesh.centroid[i];
-      const double l = d.norm(), ex = d.x() / l, ey = d.y() / l, h = 0.5 * l;
-      const double m_eff = bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
+    for (const Dashpot& p : dashpots) {
+      const std::size_t i = p.i, j = p.j;
+      const double ex = p.ex, ey = p.ey, h = p.h;
       // Velocities of i and j at the midpoint R = c_i + (l/2)e, from u = M^{-1/2} x.
       const double vxi = x[i] * w[i], vyi = x[n + i] * w[n + i], oi = x[2 * n + i] * w[2 * n + i];
       const double vxj = x[j] * w[j], vyj = x[n + j] * w[n + j], oj = x[2 * n + j] * w[2 * n + j];
       const double rel_n = (vxj - vxi) * ex + (vyj - vyi) * ey;
       const double rel_t = -(vxj - vxi) * ey + (vyj - vyi) * ex - h * (oi + oj);
-      const double fn = m_eff * gn * rel_n, ft = m_eff * gt * rel_t;  // force on i along e and t
+      const double fn = p.cn * rel_n, ft = p.ct * rel_t;  // force on i along e and t
       const double fx = fn * ex - ft * ey, fy = fn * ey + ft * ex;
       const double torque = h * ft;  // (R − c_i) × F_i = (l/2) F_t, and the same on j
       y[i] -= fx * w[i];
