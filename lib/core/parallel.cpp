@@ -7,6 +7,7 @@ namespace frac {
 int max_threads() { return omp_get_max_threads(); }
 int thread_count() { return omp_get_num_threads(); }
 int thread_index() { return omp_get_thread_num(); }
+bool in_parallel() { return omp_in_parallel() != 0; }
 
 void HomeFirstSchedule::reserve(std::size_t threads) {
   if (threads <= capacity_) return;
@@ -15,11 +16,23 @@ void HomeFirstSchedule::reserve(std::size_t threads) {
 }
 
 void HomeFirstSchedule::start(std::size_t items) {
+  start_mine(items);
+#pragma omp barrier
+}
+
+void HomeFirstSchedule::start_mine(std::size_t items) {
   const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
   const Range r = static_range(items, t, nt);
   cursor_[t].next.store(r.first, std::memory_order_relaxed);
   cursor_[t].end = r.last;
-#pragma omp barrier
+}
+
+void HomeFirstSchedule::reset(std::size_t items, std::size_t nt) {
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Range r = static_range(items, t, nt);
+    cursor_[t].next.store(r.first, std::memory_order_relaxed);
+    cursor_[t].end = r.last;
+  }
 }
 
 void set_threads(int requested) { omp_set_num_threads(requested > 0 ? requested : omp_get_num_procs()); }

@@ -73,64 +73,77 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const { f
 void Beams::set_forces(std::span<const double> q, std::span<double> f) const { forces(q, f, false); }
 
 void Beams::forces(std::span<const double> q, std::span<double> f, bool add) const {
+  reserve();
+  as_team(active_.size() > kMinParallelItems || n_ > kMinParallelItems, [&] {
+    beam_pass(q);
+#pragma omp barrier
+    gather(f, add);
+  });
+}
+
+void Beams::reserve() const {
+  if (far_.size() < active_.size()) far_.resize(active_.size());
+}
+
+void Beams::beam_pass(std::span<const double> q) const {
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  double* fx = f.data();
-  double* fy = fx + n_;
-  double* tz = fy + n_;
-  const std::size_t count = active_.size();
-  if (far_.size() < count) far_.resize(count);
-  // Forces in parallel (each beam its own slot), then each cell gathers its intact beams in beam order:
+  // Forces in parallel (each beam its own slot); each cell then gathers its intact beams in beam order (gather):
   // the same bits whatever the thread count. First the branch-free formula of a beam near its reference
-  // orientation (no library call, no unpredictable branch; GCC vectorises it where the target has
-  // gathers, e.g. -mavx2); then the beams it does not cover (rotated by more than π/8: the spinning
-  // fragments of an explosion), one at a time. One parallel region, its loops separated by barriers.
+  // orientation (no library call, no unpredictable branch; GCC vectorises it where the target has gathers,
+  // e.g. -mavx2); then the beams it does not cover (rotated by more than π/8: the spinning fragments of an
+  // explosion), one at a time, on the same thread (no barrier between).
   const std::int32_t* active = active_.data();
   const std::int32_t *cell_i = i_.data(), *cell_j = j_.data();
   const double *e0x = e0x_.data(), *e0y = e0y_.data(), *l0 = l0_.data();
   const BeamStiffness* stiffness = k_.data();
   BeamForce* out = force_.data();
   std::uint8_t* far = far_.data();
+  const Range mine = static_range(active_.size(), static_cast<std::size_t>(thread_index()),
+                                  static_cast<std::size_t>(thread_count()));
+#pragma omp simd
+  for (std::size_t k = mine.first; k < mine.last; ++k) {
+    const auto b = static_cast<std::size_t>(active[k]);
+    const auto i = static_cast<std::size_t>(cell_i[b]), j = static_cast<std::size_t>(cell_j[b]);
+    BeamResponse r;
+    const bool near = beam_response_near_reference(x[j] - x[i], y[j] - y[i], e0x[b], e0y[b], phi[i], phi[j], l0[b],
+                                                   stiffness[b], r);
+    out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
+    far[k] = !near;
+  }
+  for (std::size_t k = mine.first; k < mine.last; ++k) {
+    if (far[k]) {
+      const auto b = static_cast<std::size_t>(active[k]);
+      const BeamResponse r = response(b, q);
+      out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
+    }
+  }
+}
+
+void Beams::gather(std::span<double> f, bool add) const {
+  double* fx = f.data();
+  double* fy = fx + n_;
+  double* tz = fy + n_;
   // On cell i the beam adds (F, τ_i), on cell j (−F, τ_j) (as + (−1)·F: the same bits as − F), in beam
   // order, as a loop over the beams would; onto f, or onto zero (the same bits as onto zeros).
   const std::int32_t* start = cell_start_.data();
   const std::int32_t* beams_in = cell_count_.data();
   const CellBeam* beams_of = beams_of_.data();
-#pragma omp parallel if (count > kMinParallelItems || n_ > kMinParallelItems)
-  {
-#pragma omp for simd schedule(static)
-    for (std::size_t k = 0; k < count; ++k) {
-      const auto b = static_cast<std::size_t>(active[k]);
-      const auto i = static_cast<std::size_t>(cell_i[b]), j = static_cast<std::size_t>(cell_j[b]);
-      BeamResponse r;
-      const bool near = beam_response_near_reference(x[j] - x[i], y[j] - y[i], e0x[b], e0y[b], phi[i], phi[j], l0[b],
-                                                     stiffness[b], r);
-      out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
-      far[k] = !near;
+  const BeamForce* out = force_.data();
+  const Range mine = static_range(n_, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
+  for (std::size_t c = mine.first; c < mine.last; ++c) {
+    double sx = add ? fx[c] : 0.0, sy = add ? fy[c] : 0.0, st = add ? tz[c] : 0.0;
+    for (auto s = start[c]; s < start[c] + beams_in[c]; ++s) {
+      const CellBeam cb = beams_of[s];
+      const BeamForce& r = out[static_cast<std::size_t>(cb.beam)];
+      sx += cb.sign * r.fx;
+      sy += cb.sign * r.fy;
+      st += r.torque[cb.end];
     }
-#pragma omp for schedule(static)
-    for (std::size_t k = 0; k < count; ++k) {
-      if (far[k]) {
-        const auto b = static_cast<std::size_t>(active[k]);
-        const BeamResponse r = response(b, q);
-        out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
-      }
-    }
-#pragma omp for schedule(static)
-    for (std::size_t c = 0; c < n_; ++c) {
-      double sx = add ? fx[c] : 0.0, sy = add ? fy[c] : 0.0, st = add ? tz[c] : 0.0;
-      for (auto s = start[c]; s < start[c] + beams_in[c]; ++s) {
-        const CellBeam cb = beams_of[s];
-        const BeamForce& r = out[static_cast<std::size_t>(cb.beam)];
-        sx += cb.sign * r.fx;
-        sy += cb.sign * r.fy;
-        st += r.torque[cb.end];
-      }
-      fx[c] = sx;
-      fy[c] = sy;
-      tz[c] = st;
-    }
+    fx[c] = sx;
+    fy[c] = sy;
+    tz[c] = st;
   }
 }
 

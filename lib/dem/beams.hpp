@@ -36,6 +36,13 @@ class Beams {
   void add_forces(std::span<const double> q, std::span<double> f) const;
   // The same forces written into f, replacing what is there (the same bits as add_forces onto zeros).
   void set_forces(std::span<const double> q, std::span<double> f) const;
+  // The same in parts, team functions (core/parallel.hpp) for a caller that runs other work on the team in
+  // between: before the team, reserve; beam_pass, each beam's force at q (this thread's part of the beams);
+  // after a barrier, gather, each of this thread's cells its beams' forces, onto f (add) or into it. No barrier
+  // at their ends.
+  void reserve() const;
+  void beam_pass(std::span<const double> q) const;
+  void gather(std::span<double> f, bool add) const;
   // Elastic energy of the intact beams at q, J.
   double energy(std::span<const double> q) const;
   // Strain of every beam at q (broken beams too, for pictures).

@@ -1,7 +1,9 @@
 #include "dem/contacts.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <memory>
 
 #include "geometry/overlap.hpp"
 
@@ -9,18 +11,26 @@ namespace frac::dem {
 
 void ContactList::clear() { resize(0); }
 
-void ContactList::resize(std::size_t count) {
-  i.resize(count);
-  j.resize(count);
-  rx.resize(count);
-  ry.resize(count);
-  nx.resize(count);
-  ny.resize(count);
-  area.resize(count);
-  inv_lc.resize(count);
-  fn.resize(count);
+void ContactList::reserve(std::size_t count) {
+  if (count <= room()) return;
+  for (auto* a : {&i, &j}) a->resize(count);
+  for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &fn}) a->resize(count);
+  for (auto& a : term_power) a.resize(count);
   pair_force.resize(count);
+}
+
+void ContactList::resize(std::size_t count) {
+  reserve(count);
+  for (std::size_t k = count_; k < count; ++k) pair_force[k] = {0.0, 0.0};
+  count_ = count;
+  blocks = 0;
   candidate_pairs = enclosed = multi_crossing = 0;
+}
+
+Range ContactList::mine() const {
+  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+  if (blocks == nt) return block[t];
+  return static_range(size(), t, nt);
 }
 
 ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
@@ -41,10 +51,10 @@ ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
   }
 }
 
-// Vertices of every cell in world coordinates, and whether the neighbour list is stale: some cell may have
-// moved a vertex by more than skin/2 since the last build (centroid displacement plus bounding radius times
-// rotation; NaN counts as moved). One pass over the cells, on the threads.
-bool ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
+// Vertices of this thread's cells in world coordinates, and whether the neighbour list is stale: some cell
+// may have moved a vertex by more than skin/2 since the last build (centroid displacement plus bounding
+// radius times rotation; NaN counts as moved), into this thread's stale_ slot.
+void ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const std::size_t n = bodies_->n;
   const double* x = q.data();
   const double* y = x + n;
@@ -54,8 +64,8 @@ bool ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const double half = 0.5 * skin_;
   const double* r = bodies_->bound_radius.data();
   bool stale = !built;
-#pragma omp parallel for schedule(static) if (n > kMinParallelItems) reduction(|| : stale)
-  for (std::size_t k = 0; k < n; ++k) {
+  const Range mine = static_range(n, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
+  for (std::size_t k = mine.first; k < mine.last; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
     const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
     const auto e = static_cast<std::size_t>(mesh_->vertex_offset[k + 1]);
@@ -69,64 +79,72 @@ bool ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
       stale = stale || !(moved <= half);
     }
   }
-  return stale;
+  stale_.mine() = stale;
 }
 
-void ContactSearch::rebuild(std::span<const double> q) {
-  ++rebuilds_;
-  ref_.assign(q.begin(), q.end());
+void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
   const std::size_t n = bodies_->n;
-  // The old list, indexed by its first cell, so that a pair found again keeps what it has learnt (its
-  // separating edges, whether it overlapped, the lines of its overlap): less work. (The kept facing edge
-  // sets the clip order, which only an irregular overlap's result depends on, at round-off.)
-  std::swap(previous_, neighbours_);
-  neighbours_.clear();
-  previous_first_.assign(n + 1, 0);
-  for (const auto& pair : previous_) ++previous_first_[static_cast<std::size_t>(pair.i) + 1];
-  for (std::size_t i = 0; i < n; ++i) previous_first_[i + 1] += previous_first_[i];
   const double* x = q.data();
   const double* y = x + n;
-  // Cell list: grid cells of side 2·max bounding radius, so every overlapping pair sits in the same or
-  // adjacent grid cells. Counting sort into the grid (deterministic order: by grid cell, then index).
-  double xmin = x[0], xmax = x[0], ymin = y[0], ymax = y[0];
-  for (std::size_t k = 1; k < n; ++k) {
-    xmin = std::min(xmin, x[k]);
-    xmax = std::max(xmax, x[k]);
-    ymin = std::min(ymin, y[k]);
-    ymax = std::max(ymax, y[k]);
-  }
-  // A non-finite position ends the run at the step's check; build no list from it.
-  if (!std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin)) return;
-  const double side = 2 * bodies_->max_bound_radius + skin_;
-  // Bound the grid size (fragments flying far apart): at most ~4 grid cells per body.
-  const double span_x = xmax - xmin, span_y = ymax - ymin;
-  double cell = side;
-  while ((span_x / cell + 1) * (span_y / cell + 1) > 4.0 * static_cast<double>(n) + 16) cell *= 2;
-  const auto gx = static_cast<std::size_t>(span_x / cell) + 1;
-  const auto gy = static_cast<std::size_t>(span_y / cell) + 1;
-  cell_start_.assign(gx * gy + 1, 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto cx = std::min(gx - 1, static_cast<std::size_t>((x[k] - xmin) / cell));
-    const auto cy = std::min(gy - 1, static_cast<std::size_t>((y[k] - ymin) / cell));
-    cell_of_[k] = static_cast<std::int32_t>(cy * gx + cx);
-    ++cell_start_[static_cast<std::size_t>(cell_of_[k]) + 1];
-  }
-  for (std::size_t c = 0; c < gx * gy; ++c) cell_start_[c + 1] += cell_start_[c];
+#pragma omp single
   {
-    // Fill using a running cursor per grid cell (reuse the start array shifted by one).
-    std::vector<std::int32_t>& start = cell_start_;
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto c = static_cast<std::size_t>(cell_of_[k]);
-      sorted_[static_cast<std::size_t>(start[c]++)] = static_cast<std::int32_t>(k);
+    ++rebuilds_;
+    ref_.assign(q.begin(), q.end());
+    // The old list, indexed by its first cell, so that a pair found again keeps what it has learnt (its
+    // separating edges, whether it overlapped, the lines of its overlap): less work. (The kept facing edge
+    // sets the clip order, which only an irregular overlap's result depends on, at round-off.)
+    std::swap(previous_, neighbours_);
+    neighbours_.clear();
+    previous_first_.assign(n + 1, 0);
+    for (const auto& pair : previous_) ++previous_first_[static_cast<std::size_t>(pair.i) + 1];
+    for (std::size_t i = 0; i < n; ++i) previous_first_[i + 1] += previous_first_[i];
+    // Cell list: grid cells of side 2·max bounding radius, so every overlapping pair sits in the same or
+    // adjacent grid cells. Counting sort into the grid (deterministic order: by grid cell, then index).
+    double xmin = x[0], xmax = x[0], ymin = y[0], ymax = y[0];
+    for (std::size_t k = 1; k < n; ++k) {
+      xmin = std::min(xmin, x[k]);
+      xmax = std::max(xmax, x[k]);
+      ymin = std::min(ymin, y[k]);
+      ymax = std::max(ymax, y[k]);
     }
-    for (std::size_t c = gx * gy; c > 0; --c) start[c] = start[c - 1];
-    start[0] = 0;
+    grid_x_ = grid_y_ = 0;
+    // A non-finite position ends the run at the step's check; build no list from it.
+    if (std::isfinite(xmax - xmin) && std::isfinite(ymax - ymin)) {
+      const double side = 2 * bodies_->max_bound_radius + skin_;
+      // Bound the grid size (fragments flying far apart): at most ~4 grid cells per body.
+      const double span_x = xmax - xmin, span_y = ymax - ymin;
+      double cell = side;
+      while ((span_x / cell + 1) * (span_y / cell + 1) > 4.0 * static_cast<double>(n) + 16) cell *= 2;
+      const auto gx = static_cast<std::size_t>(span_x / cell) + 1;
+      const auto gy = static_cast<std::size_t>(span_y / cell) + 1;
+      cell_start_.assign(gx * gy + 1, 0);
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto cx = std::min(gx - 1, static_cast<std::size_t>((x[k] - xmin) / cell));
+        const auto cy = std::min(gy - 1, static_cast<std::size_t>((y[k] - ymin) / cell));
+        cell_of_[k] = static_cast<std::int32_t>(cy * gx + cx);
+        ++cell_start_[static_cast<std::size_t>(cell_of_[k]) + 1];
+      }
+      for (std::size_t c = 0; c < gx * gy; ++c) cell_start_[c + 1] += cell_start_[c];
+      // Fill using a running cursor per grid cell (reuse the start array shifted by one).
+      std::vector<std::int32_t>& start = cell_start_;
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto c = static_cast<std::size_t>(cell_of_[k]);
+        sorted_[static_cast<std::size_t>(start[c]++)] = static_cast<std::int32_t>(k);
+      }
+      for (std::size_t c = gx * gy; c > 0; --c) start[c] = start[c - 1];
+      start[0] = 0;
+      grid_x_ = gx;
+      grid_y_ = gy;
+    }
   }
-  // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (static
-  // schedule, in thread order) into their own buffers, joined in thread order: the same list whatever the
-  // thread count.
+  // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (in thread
+  // order) into their own buffers, joined in thread order: the same list whatever the thread count.
+  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+  auto& buf = thread_pairs_[t];
+  buf.clear();
+  const std::size_t gx = grid_x_, gy = grid_y_;
   const auto& r = bodies_->bound_radius;
-  auto pairs_of = [&](std::size_t i, std::vector<NeighbourPair>& out) {
+  auto pairs_of = [&](std::size_t i) {
     const auto ci = static_cast<std::size_t>(cell_of_[i]);
     const std::size_t cx = ci % gx, cy = ci / gx;
     for (std::size_t ny = (cy > 0 ? cy - 1 : 0); ny <= std::min(gy - 1, cy + 1); ++ny) {
@@ -143,37 +161,37 @@ void ContactSearch::rebuild(std::span<const double> q) {
           const auto* const known =
               std::find_if(begin, end, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
           if (known != end) {
-            out.push_back(*known);
+            buf.push_back(*known);
             continue;
           }
           const Vec2 dij(dx, dy);
-          out.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
+          buf.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                          static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
                          static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false, {}});
         }
       }
     }
   };
-  if (n <= kMinParallelItems) {
-    for (std::size_t i = 0; i < n; ++i) pairs_of(i, neighbours_);
-    return;
+  if (gx > 0) {
+    for (std::size_t i = n * t / nt; i < n * (t + 1) / nt; ++i) pairs_of(i);
   }
-  const auto most = static_cast<std::size_t>(max_threads());
-  if (thread_pairs_.size() < most) thread_pairs_.resize(most);
-  int teams = 1;
-#pragma omp parallel
-  {
-    const auto t = static_cast<std::size_t>(thread_index());
-    const auto nt = static_cast<std::size_t>(thread_count());
+#pragma omp barrier
 #pragma omp single
-    teams = static_cast<int>(nt);
-    auto& buf = thread_pairs_[t];
-    buf.clear();
-    for (std::size_t i = n * t / nt; i < n * (t + 1) / nt; ++i) pairs_of(i, buf);
-  }
-  for (int t = 0; t < teams; ++t) {
-    const auto& buf = thread_pairs_[static_cast<std::size_t>(t)];
-    neighbours_.insert(neighbours_.end(), buf.begin(), buf.end());
+  {
+    for (std::size_t b = 0; b < nt; ++b) neighbours_.insert(neighbours_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
+    const std::size_t pairs = neighbours_.size();
+    if (geometry_.size() < pairs) {
+      geometry_.resize(pairs + pairs / 4);
+      pair_state_.resize(pairs + pairs / 4);
+    }
+    out.reserve(pairs + pairs / 4);  // (at most one contact per pair)
+    pair_schedule_.reset(pairs, nt);
+    const std::size_t groups = (pairs + kCountGroup - 1) / kCountGroup + 1;  // (+1: a chunk's second group)
+    if (overlap_count_size_ < groups) {
+      overlap_count_size_ = groups + groups / 4;
+      overlap_count_ = std::make_unique<std::atomic<std::int32_t>[]>(overlap_count_size_);
+    }
+    for (std::size_t g = 0; g < overlap_count_size_; ++g) overlap_count_[g].store(0, std::memory_order_relaxed);
   }
 }
 
@@ -224,13 +242,14 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
   return true;
 }
 
-// The overlapping pairs among [first, last) into the list from the block's offset on, in pair order, and the
-// block's diagnostics.
-void ContactSearch::fill_contacts(std::size_t first, std::size_t last, Block& block, ContactList& out) {
+// The block's contacts, entries [offset, offset + count) of the list, in pair order from pair `first` on (the
+// first overlapping pair at or after it is contact `offset`), and the block's diagnostics.
+void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& out) {
   const double* inv_d = inv_diameter_.data();
   auto k = static_cast<std::size_t>(block.offset);
+  const auto last = static_cast<std::size_t>(block.offset + block.count);
   std::int64_t enclosed = 0, multi_crossing = 0;  // (counted here, not in the block: the blocks share a line)
-  for (std::size_t p = first; p < last; ++p) {
+  for (std::size_t p = first; k < last; ++p) {
     if (pair_state_[p] != PairState::overlapping) continue;
     const auto& geo = geometry_[p];
     const auto& pair = neighbours_[p];
@@ -252,62 +271,108 @@ void ContactSearch::fill_contacts(std::size_t first, std::size_t last, Block& bl
   block.multi_crossing = multi_crossing;
 }
 
+void ContactSearch::reserve(std::size_t threads, ContactList& out) {
+  if (blocks_.size() < threads) blocks_.resize(threads);
+  if (thread_pairs_.size() < threads) thread_pairs_.resize(threads);
+  if (out.block.size() < threads) out.block.resize(threads);
+  pair_schedule_.reserve(threads);
+  stale_.reserve(threads);
+  candidates_.reserve(threads);
+}
+
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
-  const std::size_t n = bodies_->n;
-  if (n < 2) {
-    out.clear();
-    return;
+  reserve(static_cast<std::size_t>(max_threads()), out);
+  as_team(bodies_->n > kMinParallelItems, [&] {
+    find_start(q);
+    find_finish(q, out);
+  });
+  find_end(out);
+}
+
+void ContactSearch::find_start(std::span<const double> q) {
+  if (bodies_->n < 2) return;
+  world_vertices_and_staleness(q);
+  // This thread's cursor and its share of the group counts, for the current list (a rebuild resets them all).
+  const std::size_t pairs = neighbours_.size();
+  pair_schedule_.start_mine(pairs);
+  const Range groups = static_range((pairs + kCountGroup - 1) / kCountGroup, static_cast<std::size_t>(thread_index()),
+                                    static_cast<std::size_t>(thread_count()));
+  for (std::size_t g = groups.first; g < groups.last; ++g) overlap_count_[g].store(0, std::memory_order_relaxed);
+}
+
+void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
+  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+  if (t == 0) teams_ = nt;
+  Block& block = blocks_[t];
+  block = Block{};
+  candidates_.mine() = 0;
+  out.block[t] = {0, 0};
+  if (bodies_->n < 2) return;
+  // What the list has room for, read before anyone can change it (behind the barrier).
+  const bool room = out.room() >= neighbours_.size();
+#pragma omp barrier
+  bool stale = false;
+  for (std::size_t s = 0; s < nt; ++s) stale = stale || stale_[s] != 0;
+  if (stale) {
+    rebuild(q, out);
+  } else if (!room) {
+#pragma omp single
+    out.reserve(neighbours_.size());
   }
-  if (world_vertices_and_staleness(q)) rebuild(q);
   const double* x = q.data();
-  const double* y = x + n;
+  const double* y = x + bodies_->n;
   const double g = bodies_->length_scale;
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const std::size_t pairs = neighbours_.size();
-  if (geometry_.size() < pairs) {
-    geometry_.resize(pairs + pairs / 4);
-    pair_state_.resize(pairs + pairs / 4);
-  }
-  const auto most = static_cast<std::size_t>(max_threads());
-  if (blocks_.size() < most) blocks_.resize(most);
+  // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread takes
+  // the pairs of its cells first, then helps the others. The overlapping pairs are counted per group of
+  // kCountGroup pairs (integer sums: the same whatever the order).
   std::int64_t candidates = 0;
-  std::size_t teams = 1;
-  pair_schedule_.reserve(most);
-#pragma omp parallel if (pairs > kMinParallelItems) reduction(+ : candidates)
-  {
-    // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread
-    // takes the pairs of its cells first, then helps the others.
-    pair_schedule_.start(pairs);
-    pair_schedule_.run(64, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t p = begin; p < end; ++p) candidates += test_pair(p, x, y, slack);
-    });
-#pragma omp barrier
-    // The list in pair order, the same whatever the thread count: each thread counts the overlapping pairs
-    // of its block of pairs, then fills its block at the offset of the blocks before it.
-    const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-    const auto [first, last] = static_range(pairs, t, nt);  // the pairs it tested first
-    Block& block = blocks_[t];
-    std::int64_t count = 0;
-    for (std::size_t p = first; p < last; ++p) count += pair_state_[p] == PairState::overlapping;
-    block = Block{count, 0, 0, 0};
-#pragma omp barrier
-#pragma omp single
-    {
-      std::int64_t total = 0;
-      for (std::size_t b = 0; b < nt; ++b) {
-        blocks_[b].offset = total;
-        total += blocks_[b].count;
-      }
-      out.resize(static_cast<std::size_t>(total));
-      teams = nt;
+  std::atomic<std::int32_t>* group_count = overlap_count_.get();
+  pair_schedule_.run(64, [&](std::size_t begin, std::size_t end) {
+    const std::size_t g0 = begin / kCountGroup;
+    std::int32_t count[2] = {0, 0};  // (a chunk of 64 spans at most two groups)
+    for (std::size_t p = begin; p < end; ++p) {
+      candidates += test_pair(p, x, y, slack);
+      count[p / kCountGroup != g0] += pair_state_[p] == PairState::overlapping;
     }
-    fill_contacts(first, last, block, out);
+    for (std::size_t s = 0; s < 2; ++s)
+      if (count[s] > 0) group_count[g0 + s].fetch_add(count[s], std::memory_order_relaxed);
+  });
+  candidates_.mine() = candidates;
+#pragma omp barrier
+  // The list in pair order, the same whatever the thread count, cut into equal blocks, one per thread: every
+  // thread finds where its block starts from the group counts.
+  const std::size_t groups = (pairs + kCountGroup - 1) / kCountGroup;
+  std::int64_t total = 0;
+  for (std::size_t c = 0; c < groups; ++c) total += group_count[c].load(std::memory_order_relaxed);
+  const std::int64_t first = total * static_cast<std::int64_t>(t) / static_cast<std::int64_t>(nt);
+  const std::int64_t last = total * static_cast<std::int64_t>(t + 1) / static_cast<std::int64_t>(nt);
+  std::int64_t seen = 0;
+  std::size_t group = 0;
+  while (group < groups && seen + group_count[group].load(std::memory_order_relaxed) <= first)
+    seen += group_count[group++].load(std::memory_order_relaxed);
+  std::size_t p = group * kCountGroup;
+  for (; seen < first; ++p) seen += pair_state_[p] == PairState::overlapping;
+  block.offset = first;
+  block.count = last - first;
+  fill_contacts(p, block, out);
+  out.block[t] = {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+}
+
+void ContactSearch::find_end(ContactList& out) {
+  std::int64_t total = 0, candidates = 0, enclosed = 0, multi_crossing = 0;
+  for (std::size_t b = 0; b < teams_; ++b) {
+    total += blocks_[b].count;
+    candidates += candidates_[b];
+    enclosed += blocks_[b].enclosed;
+    multi_crossing += blocks_[b].multi_crossing;
   }
+  out.count_ = static_cast<std::size_t>(total);
+  out.blocks = teams_;
   out.candidate_pairs = candidates;
-  for (std::size_t b = 0; b < teams; ++b) {
-    out.enclosed += blocks_[b].enclosed;
-    out.multi_crossing += blocks_[b].multi_crossing;
-  }
+  out.enclosed = enclosed;
+  out.multi_crossing = multi_crossing;
 }
 
 namespace {
@@ -324,24 +389,21 @@ inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::spa
   return {vjx - vix, vjy - viy};
 }
 
-// One contact force term: force_of(k) gives the force on i of contact k (j receives its opposite), applied
-// at R_k. The forces are computed in parallel and added to the contacts' slots (c.pair_force); the power of
-// each, F·(v_i(R) − v_j(R)), in its own slot, then summed in contact order: the same bits whatever the
-// thread count. Returns the power delivered to the bodies.
+// One contact force term on the contacts [first, last): force_of(k) gives the force on i of contact k (j
+// receives its opposite), applied at R_k. The force is added to the contact's slot (c.pair_force), and its
+// power, F·(v_i(R) − v_j(R)), written to the term's slot of the contact (summed by contact_power in contact
+// order: the same bits whatever the thread count).
 template <class ForceOf>
-double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q, std::span<const double> v,
-                       ForceOf&& force_of) {
-  const std::size_t count = c.size();
-  if (c.pair_power.size() < count) c.pair_power.resize(count + count / 4);
+void add_pair_forces(ContactList& c, ContactTerm term, std::size_t n, std::span<const double> q,
+                     std::span<const double> v, Range contacts, ForceOf&& force_of) {
   const double* x = q.data();
   const double* y = x + n;
   const double* vx = v.data();
   const double* vy = vx + n;
   const double* w = vy + n;
   PairForce* pf = c.pair_force.data();
-  double* pw = c.pair_power.data();
-#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
-  for (std::size_t k = 0; k < count; ++k) {
+  double* pw = c.term_power[static_cast<std::size_t>(term)].data();
+  for (std::size_t k = contacts.first; k < contacts.last; ++k) {
     const Vec2 force = force_of(k);
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
     const double fx = force.x(), fy = force.y();
@@ -352,49 +414,78 @@ double add_pair_forces(ContactList& c, std::size_t n, std::span<const double> q,
     pf[k].fy += fy;
     pw[k] = fx * (vix - vjx) + fy * (viy - vjy);
   }
-  double power = 0;
-  for (std::size_t k = 0; k < count; ++k) power += pw[k];
-  return power;
 }
 
 double effective_mass(const Bodies& bodies, std::size_t i, std::size_t j) {
   return bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
 }
+
+// A term as a team of its own: each thread its part of the list, then the power summed.
+double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                std::span<const double> q, std::span<const double> v) {
+  as_team(c.size() > kMinParallelItems, [&] { contact_term(term, c, p, bodies, q, v, c.mine()); });
+  return contact_power(c, term);
+}
 }  // namespace
+
+void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                  std::span<const double> q, std::span<const double> v, Range contacts) {
+  const std::size_t n = bodies.n;
+  switch (term) {
+    case ContactTerm::elastic: {
+      const double yh = p.grain_modulus * p.thickness;
+      add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
+        const double fn = -yh * c.area[k] * c.inv_lc[k];
+        c.fn[k] = fn;
+        return Vec2(fn * c.nx[k], fn * c.ny[k]);
+      });
+      return;
+    }
+    case ContactTerm::damping:
+      add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
+        const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+        const Vec2 vr = relative_velocity(n, q, v, i, j, c.rx[k], c.ry[k]);
+        const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
+        const double fd = effective_mass(bodies, i, j) * p.gamma_n * vn;
+        c.fn[k] += fd;
+        return Vec2(fd * c.nx[k], fd * c.ny[k]);
+      });
+      return;
+    case ContactTerm::friction:
+      add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
+        const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+        const Vec2 vr = relative_velocity(n, q, v, i, j, c.rx[k], c.ry[k]);
+        const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
+        const double vt = vr.x() * tx + vr.y() * ty;
+        const double ft = std::copysign(
+            std::min(effective_mass(bodies, i, j) * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
+        return Vec2(ft * tx, ft * ty);
+      });
+      return;
+    default: return;
+  }
+}
+
+double contact_power(const ContactList& c, ContactTerm term) {
+  const double* pw = c.term_power[static_cast<std::size_t>(term)].data();
+  double power = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) power += pw[k];
+  return power;
+}
 
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v) {
-  const double yh = p.grain_modulus * p.thickness;
-  return add_pair_forces(c, bodies.n, q, v, [&](std::size_t k) {
-    const double fn = -yh * c.area[k] * c.inv_lc[k];
-    c.fn[k] = fn;
-    return Vec2(fn * c.nx[k], fn * c.ny[k]);
-  });
+  return run_term(ContactTerm::elastic, c, p, bodies, q, v);
 }
 
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v) {
-  return add_pair_forces(c, bodies.n, q, v, [&](std::size_t k) {
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
-    const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
-    const double fd = effective_mass(bodies, i, j) * p.gamma_n * vn;
-    c.fn[k] += fd;
-    return Vec2(fd * c.nx[k], fd * c.ny[k]);
-  });
+  return run_term(ContactTerm::damping, c, p, bodies, q, v);
 }
 
-double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                        std::span<const double> v) {
-  return add_pair_forces(c, bodies.n, q, v, [&](std::size_t k) {
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const Vec2 vr = relative_velocity(bodies.n, q, v, i, j, c.rx[k], c.ry[k]);
-    const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
-    const double vt = vr.x() * tx + vr.y() * ty;
-    const double ft =
-        std::copysign(std::min(effective_mass(bodies, i, j) * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
-    return Vec2(ft * tx, ft * ty);
-  });
+double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                        std::span<const double> q, std::span<const double> v) {
+  return run_term(ContactTerm::friction, c, p, bodies, q, v);
 }
 
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {

@@ -12,13 +12,17 @@
 // over the terms, to the cells.
 // Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order), the
 // neighbour pairs (circle test, separating edges, overlap geometry; each thread its cells' pairs first) and
-// the contact forces, each written to its own slot; the list is then filled in pair order (each thread its
-// block of pairs, at offsets from the counts of the blocks before it), and the contacts' forces are added to
-// the cells in contact order, so results do not depend on the thread count. The overlap of a
+// the contact forces, each written to its own slot; the list is then filled in pair order (each thread an
+// equal block of it, found from the overlapping pairs counted per group of pairs), the contact terms run
+// on each thread's block, and the contacts' forces are added to the cells in contact order, so results do
+// not depend on the thread count. All of this runs on one team of threads (core/parallel.hpp), with the
+// model's other loops. The overlap of a
 // pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell
 // edge, which leave out clip lines that cannot cut.
 #include <array>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -36,7 +40,11 @@ struct PairForce {
   double fx, fy;
 };
 
+// The contact terms, in the order the engine runs them.
+enum class ContactTerm : int { elastic = 0, damping, friction, count };
+
 struct ContactList {
+  // Per contact, in entries [0, size()); the arrays may be longer (room kept from list to list).
   std::vector<std::int32_t> i, j;
   std::vector<double> rx, ry;   // application point R, m
   std::vector<double> nx, ny;   // unit normal from i to j
@@ -44,32 +52,58 @@ struct ContactList {
   std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
   std::vector<double> fn;       // normal force on i along n (elastic + damping), N; negative = repulsive
   // The force on i summed over the terms that ran (zero after ContactSearch::find, resize and clear_forces;
-  // each term adds its own), and scratch for the power of the last term (one slot per contact).
+  // each term adds its own), and the power of each term on each contact (summed by contact_power).
   std::vector<PairForce> pair_force;
-  std::vector<double> pair_power;
-  std::size_t size() const { return i.size(); }
+  std::array<std::vector<double>, static_cast<std::size_t>(ContactTerm::count)> term_power;
+  std::size_t size() const { return count_; }
   void clear();
-  // Makes room for `count` contacts (entries not yet set; new pair forces zero) and zeroes the diagnostics.
+  // Makes room for `count` contacts and sets the size (entries not yet set; new pair forces zero) and zeroes
+  // the diagnostics.
   void resize(std::size_t count);
+  // Room for `count` contacts (never shrinks; the size is unchanged).
+  void reserve(std::size_t count);
+  std::size_t room() const { return i.size(); }
   // Sets every contact's summed force back to zero.
   void clear_forces();
   // Diagnostics of the last search.
   std::int64_t candidate_pairs = 0;  // pairs whose bounding circles overlap
   std::int64_t enclosed = 0;         // overlaps without a contact line (one polygon inside another)
   std::int64_t multi_crossing = 0;   // more than 2 crossings (a corner poked through)
+  // The contacts that thread t of the team that filled the list wrote, [block[t].first, block[t].last), for
+  // the `blocks` threads of that team (the search's last step sets them): the contact terms run on these on
+  // the same team, each thread on the contacts it wrote, with no barrier between.
+  std::vector<Range> block;
+  std::size_t blocks = 0;
+  // This thread's contacts: its block when the team that filled the list is the calling team, else its
+  // static part.
+  Range mine() const;
+
+ private:
+  friend class ContactSearch;
+  std::size_t count_ = 0;
 };
 
 class ContactSearch {
  public:
   ContactSearch() = default;
   ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies);
-  // Finds every overlapping pair at state q and fills `out` (cleared first).
+  // Finds every overlapping pair at state q and fills `out` (cleared first). A team of its own (or the
+  // caller's: core/parallel.hpp).
   void find(std::span<const double> q, ContactList& out);
+  // The same in parts, for a caller that runs other work on the same team in between (the model: the
+  // beams). Before the team: reserve. Team functions: find_start (the world vertices of this thread's cells,
+  // no barrier at its end), find_finish (the neighbour list, the pair tests, the list filled: each thread
+  // its block, out.mine(); no barrier at its end). After a barrier, by one thread: find_end (the list's size
+  // and diagnostics).
+  void reserve(std::size_t threads, ContactList& out);
+  void find_start(std::span<const double> q);
+  void find_finish(std::span<const double> q, ContactList& out);
+  void find_end(ContactList& out);
   // How often the neighbour list was rebuilt.
   std::int64_t rebuilds() const { return rebuilds_; }
 
  private:
-  bool world_vertices_and_staleness(std::span<const double> q);
+  void world_vertices_and_staleness(std::span<const double> q);  // this thread's cells; into stale_
   std::span<const Vec2> world_polygon(std::size_t k) const {
     const auto& off = mesh_->vertex_offset;
     return {world_.data() + off[k], static_cast<std::size_t>(off[k + 1] - off[k])};
@@ -82,7 +116,7 @@ class ContactSearch {
   std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
   std::vector<std::int32_t> cell_of_;
   std::vector<std::int32_t> sorted_;
-  void rebuild(std::span<const double> q);
+  void rebuild(std::span<const double> q, ContactList& out);  // a team function, barriers at its ends
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when some
   // vertex may have moved by more than skin/2 since the last build (centroid displacement plus bounding
@@ -99,12 +133,21 @@ class ContactSearch {
   std::vector<NeighbourPair> previous_;       // the list before the last rebuild
   std::vector<std::int32_t> previous_first_;  // its first pair of each cell i (pairs are in order of i)
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
+  std::size_t grid_x_ = 0, grid_y_ = 0;                   // the rebuild's grid (0: no finite grid)
+  TeamSlots<char> stale_;                                 // per thread: some cell of its moved too far
+  TeamSlots<std::int64_t> candidates_;                    // per thread: candidate pairs it tested
+  std::size_t teams_ = 1;                                 // threads of the team of the last find
   struct Block {  // one thread's block of pairs in the list fill
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
     std::int64_t offset = 0;                                   // its first entry in the list
   };
-  void fill_contacts(std::size_t first, std::size_t last, Block& block, ContactList& out);
-  std::vector<Block> blocks_;
+  void fill_contacts(std::size_t first, Block& block, ContactList& out);
+  // The overlapping pairs of each group of kCountGroup neighbour pairs (the pair tests add them up; each
+  // find zeroes them first), from which each thread finds where its equal share of the list starts.
+  static constexpr std::size_t kCountGroup = 64;
+  std::unique_ptr<std::atomic<std::int32_t>[]> overlap_count_;
+  std::size_t overlap_count_size_ = 0;
+  std::vector<Block> blocks_;  // per thread
   HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
@@ -119,13 +162,19 @@ struct ContactParameters {
 // The force terms. q, v: state and velocities (flat layout of bodies.hpp). Each adds its force on every
 // contact to the contact's pair_force (equal and opposite on j, acting at R) and returns the power it delivers
 // to the bodies, W. add_contact_forces then adds the contacts' summed forces and their torques to the cells'
-// forces f (same layout), once for all the terms that ran.
+// forces f (same layout), once for all the terms that ran. Each term is a team of its own (core/parallel.hpp);
+// contact_term runs one on the contacts [first, last) (a team's part; the terms of one contact in engine
+// order on one thread, since damping adds to fn and friction reads it), and contact_power sums a term's power
+// over the list in contact order.
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v);
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v);
 double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies,
                         std::span<const double> q, std::span<const double> v);
+void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                  std::span<const double> q, std::span<const double> v, Range contacts);
+double contact_power(const ContactList& c, ContactTerm term);
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
 
 }  // namespace frac::dem

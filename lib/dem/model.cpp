@@ -8,6 +8,14 @@
 
 namespace frac::dem {
 
+ContactTerm contact_term_of(Term t) {
+  switch (t) {
+    case Term::contact_damping: return ContactTerm::damping;
+    case Term::contact_friction: return ContactTerm::friction;
+    default: return ContactTerm::elastic;
+  }
+}
+
 std::string_view term_name(Term t) {
   switch (t) {
     case Term::beams: return "beams";
@@ -59,41 +67,68 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
   const std::size_t n = size();
   double* force = force_.data();
-  // The per-coordinate loops run on the threads split as the integrator's and the per-cell loops split
-  // them (for_coordinate_ranges), so each thread finds the values where it left them.
-  // The beams, when on, come first and write the forces (no pass to zero them first: a loop fewer).
-  const bool beams_write = !terms_.empty() && terms_.front() == Term::beams;
-  if (!beams_write) {
-    for_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
-#pragma omp simd
-      for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
-    });
-  }
   power_.fill(0.0);
+  for (const Term term : terms_) ++calls_[static_cast<std::size_t>(term)];
+  // The beams, when on, come first and write the forces (no pass to zero them first: a loop fewer).
+  const bool beams_on = !terms_.empty() && terms_.front() == Term::beams;
   const bool contact_list = physics_.contacts;
-  if (contact_list) search_.find(q, contacts_);
-  for (const Term term : terms_) {
-    ++calls_[static_cast<std::size_t>(term)];
-    if (term == Term::beams && beams_write) {
-      beams_.set_forces(q, force_);  // (delivers its power through the beam energy, not bookkept as work)
-      continue;
-    }
-    power_[static_cast<std::size_t>(term)] = add_term(term, q, v);
-  }
-  if (contact_list) add_contact_forces(contacts_, bodies_.n, q, force_);  // the contact terms' forces, summed
-  // The accelerations, and in the same pass whether every force is finite (Σ F·0 is 0 exactly then). A
-  // non-finite force is traced to the first term that made it (the run stops at this step).
+  const auto most = static_cast<std::size_t>(max_threads());
+  if (contact_list) search_.reserve(most, contacts_);
+  if (beams_on) beams_.reserve();
+  zero_.reserve(most);
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();
-  const double zero = sum_over_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
-    double z = 0;
-#pragma omp simd reduction(+ : z)
-    for (std::size_t k = first; k < last; ++k) {
-      acc[k] = force[k] * inv_mass[k];
-      z += force[k] * 0.0;
+  // One parallel region (core/parallel.hpp: team functions), barriers only where a thread reads what another
+  // wrote. Each thread takes the same cells in every per-cell loop (static_range), so it finds the values
+  // where it left them, and the contacts it filled, for the contact terms.
+  as_team(bodies_.n > kMinParallelItems, [&] {
+    const auto nt = static_cast<std::size_t>(thread_count());
+    if (!beams_on) {
+      this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+#pragma omp simd
+        for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
+      });
     }
-    return z;
+    if (contact_list) search_.find_start(q);
+    if (beams_on) beams_.beam_pass(q);
+    if (contact_list) {
+      search_.find_finish(q, contacts_);  // (its barriers come after every beam's force)
+    } else {
+#pragma omp barrier
+    }
+    if (beams_on) beams_.gather(force_, false);  // (delivers its power through the beam energy, not as work)
+    if (contact_list) {
+      const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
+      for (const Term term : terms_) {
+        if (term != Term::beams) contact_term(contact_term_of(term), contacts_, contact_parameters_, bodies_, q, v, mine);
+      }
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      teams_ = nt;
+      if (contact_list) {
+        search_.find_end(contacts_);
+        for (const Term term : terms_) {
+          if (term != Term::beams) power_[static_cast<std::size_t>(term)] = contact_power(contacts_, contact_term_of(term));
+        }
+        add_contact_forces(contacts_, bodies_.n, q, force_);  // the contact terms' forces, summed
+      }
+    }
+    // The accelerations, and in the same pass whether every force is finite (Σ F·0 is 0 exactly then).
+    double z = 0;
+    this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+#pragma omp simd reduction(+ : z)
+      for (std::size_t k = first; k < last; ++k) {
+        acc[k] = force[k] * inv_mass[k];
+        z += force[k] * 0.0;
+      }
+    });
+    zero_.mine() = z;
   });
+  double zero = 0;
+  for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
+  // A non-finite force is traced to the first term that made it (the run stops at this step).
   if (zero != 0.0 && non_finite_term_ == Term::count) blame_non_finite(q, v);
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {

@@ -12,6 +12,7 @@
 
 #include "dem/beams.hpp"
 #include "dem/bodies.hpp"
+#include "core/parallel.hpp"
 #include "dem/contacts.hpp"
 #include "dem/material.hpp"
 #include "dynamics/integrator.hpp"
@@ -20,6 +21,8 @@ namespace frac::dem {
 
 enum class Term : int { beams = 0, contact_elastic, contact_damping, contact_friction, count };
 std::string_view term_name(Term t);
+// The contact term a Term names (the contact list's own numbering); elastic for the others.
+ContactTerm contact_term_of(Term t);
 
 // A prescribed coordinate: index into q, and its trajectory q(t) = q0 + s(t), with s, ṡ, s̈ from the
 // loading protocol (shared by every coordinate of one boundary layer through `layer`).
@@ -101,6 +104,8 @@ class Model final : public dynamics::System {
   std::vector<Prescribed> prescribed_;
   std::vector<std::size_t> prescribed_index_;
   std::vector<double> inv_mass_;  // per coordinate: 1/m, 1/m, 1/I
+  TeamSlots<double> zero_;        // per thread of the evaluation's team: Σ F·0 over its coordinates
+  std::size_t teams_ = 1;         // threads of that team
 };
 
 }  // namespace frac::dem
