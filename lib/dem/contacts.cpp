@@ -1,9 +1,7 @@
 #include "dem/contacts.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <memory>
 
 #include "geometry/overlap.hpp"
 
@@ -186,12 +184,6 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
     }
     out.reserve(pairs + pairs / 4);  // (at most one contact per pair)
     pair_schedule_.reset(pairs, nt);
-    const std::size_t groups = (pairs + kCountGroup - 1) / kCountGroup + 1;  // (+1: a chunk's second group)
-    if (overlap_count_size_ < groups) {
-      overlap_count_size_ = groups + groups / 4;
-      overlap_count_ = std::make_unique<std::atomic<std::int32_t>[]>(overlap_count_size_);
-    }
-    for (std::size_t g = 0; g < overlap_count_size_; ++g) overlap_count_[g].store(0, std::memory_order_relaxed);
   }
 }
 
@@ -292,12 +284,9 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
 void ContactSearch::find_start(std::span<const double> q) {
   if (bodies_->n < 2) return;
   world_vertices_and_staleness(q);
-  // This thread's cursor and its share of the group counts, for the current list (a rebuild resets them all).
+  // This thread's cursor, for the current list (a rebuild resets them all).
   const std::size_t pairs = neighbours_.size();
   pair_schedule_.start_mine(pairs);
-  const Range groups = static_range((pairs + kCountGroup - 1) / kCountGroup, static_cast<std::size_t>(thread_index()),
-                                    static_cast<std::size_t>(thread_count()));
-  for (std::size_t g = groups.first; g < groups.last; ++g) overlap_count_[g].store(0, std::memory_order_relaxed);
 }
 
 void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
@@ -325,35 +314,23 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const std::size_t pairs = neighbours_.size();
   // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread takes
-  // the pairs of its cells first, then helps the others. The overlapping pairs are counted per group of
-  // kCountGroup pairs (integer sums: the same whatever the order).
+  // the pairs of its cells first, then helps the others.
   std::int64_t candidates = 0;
-  std::atomic<std::int32_t>* group_count = overlap_count_.get();
   pair_schedule_.run(64, [&](std::size_t begin, std::size_t end) {
-    const std::size_t g0 = begin / kCountGroup;
-    std::int32_t count[2] = {0, 0};  // (a chunk of 64 spans at most two groups)
-    for (std::size_t p = begin; p < end; ++p) {
-      candidates += test_pair(p, x, y, slack);
-      count[p / kCountGroup != g0] += pair_state_[p] == PairState::overlapping;
-    }
-    for (std::size_t s = 0; s < 2; ++s)
-      if (count[s] > 0) group_count[g0 + s].fetch_add(count[s], std::memory_order_relaxed);
+    for (std::size_t p = begin; p < end; ++p) candidates += test_pair(p, x, y, slack);
   });
   candidates_.mine() = candidates;
 #pragma omp barrier
   // The list in pair order, the same whatever the thread count, cut into equal blocks, one per thread: every
-  // thread finds where its block starts from the group counts.
-  const std::size_t groups = (pairs + kCountGroup - 1) / kCountGroup;
+  // thread counts the overlapping pairs (one byte per pair, vectorised: cheaper than another barrier) and
+  // finds where its block starts.
+  const PairState* state = pair_state_.data();
   std::int64_t total = 0;
-  for (std::size_t c = 0; c < groups; ++c) total += group_count[c].load(std::memory_order_relaxed);
+  for (std::size_t p = 0; p < pairs; ++p) total += state[p] == PairState::overlapping;
   const std::int64_t first = total * static_cast<std::int64_t>(t) / static_cast<std::int64_t>(nt);
   const std::int64_t last = total * static_cast<std::int64_t>(t + 1) / static_cast<std::int64_t>(nt);
-  std::int64_t seen = 0;
-  std::size_t group = 0;
-  while (group < groups && seen + group_count[group].load(std::memory_order_relaxed) <= first)
-    seen += group_count[group++].load(std::memory_order_relaxed);
-  std::size_t p = group * kCountGroup;
-  for (; seen < first; ++p) seen += pair_state_[p] == PairState::overlapping;
+  std::size_t p = 0;
+  for (std::int64_t seen = 0; seen < first; ++p) seen += state[p] == PairState::overlapping;
   block.offset = first;
   block.count = last - first;
   fill_contacts(p, block, out);

@@ -13,16 +13,13 @@
 // Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order), the
 // neighbour pairs (circle test, separating edges, overlap geometry; each thread its cells' pairs first) and
 // the contact forces, each written to its own slot; the list is then filled in pair order (each thread an
-// equal block of it, found from the overlapping pairs counted per group of pairs), the contact terms run
-// on each thread's block, and the contacts' forces are added to the cells in contact order, so results do
-// not depend on the thread count. All of this runs on one team of threads (core/parallel.hpp), with the
-// model's other loops. The overlap of a
-// pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell
-// edge, which leave out clip lines that cannot cut.
+// equal block of it), the contact terms run on each thread's block, and the contacts' forces are added to
+// the cells in contact order, so results do not depend on the thread count. All of this runs on one team of
+// threads (core/parallel.hpp), with the model's other loops. The overlap of a pair gets a hint
+// (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell edge, which leave
+// out clip lines that cannot cut.
 #include <array>
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -142,11 +139,6 @@ class ContactSearch {
     std::int64_t offset = 0;                                   // its first entry in the list
   };
   void fill_contacts(std::size_t first, Block& block, ContactList& out);
-  // The overlapping pairs of each group of kCountGroup neighbour pairs (the pair tests add them up; each
-  // find zeroes them first), from which each thread finds where its equal share of the list starts.
-  static constexpr std::size_t kCountGroup = 64;
-  std::unique_ptr<std::atomic<std::int32_t>[]> overlap_count_;
-  std::size_t overlap_count_size_ = 0;
   std::vector<Block> blocks_;  // per thread
   HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
   std::int64_t rebuilds_ = 0;
