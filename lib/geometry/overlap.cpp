@@ -263,9 +263,9 @@ bool regular_vertices(const PairEdges& edges, const int* label, std::size_t K, V
     const double rx = a.ax - b.ax, ry = a.ay - b.ay;
     const double sb = a.dx * ry - a.dy * rx, sa = b.dx * ry - b.dy * rx;
     const double limit = edges.tol2 * den * den;
-    const double eb = den - sb, ea = den - sa;
-    ok &= (sb > 0.0) & (eb > 0.0) & (sa > 0.0) & (ea > 0.0) & (sb * sb * b2 > limit) & (eb * eb * b2 > limit) &
-          (sa * sa * a2 > limit) & (ea * ea * a2 > limit);
+    // Each end decides through the nearer one (x·x·c, rounded, does not decrease with x > 0).
+    const double mb = std::min(sb, den - sb), ma = std::min(sa, den - sa);
+    ok &= (mb > 0.0) & (ma > 0.0) & (mb * mb * b2 > limit) & (ma * ma * a2 > limit);
     const double t = sb / den;
     v[k] = Vec2(b.ax + t * b.dx, b.ay + t * b.dy);
   }
