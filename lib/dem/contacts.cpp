@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "geometry/overlap.hpp"
 
@@ -408,6 +409,11 @@ double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, co
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts) {
   const std::size_t n = bodies.n;
+  // The velocity of j relative to i at R_k, and the effective mass, of contact k (the dissipative terms).
+  auto motion = [&](std::size_t k) {
+    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
+    return std::pair{relative_velocity(n, q, v, i, j, c.rx[k], c.ry[k]), effective_mass(bodies, i, j)};
+  };
   switch (term) {
     case ContactTerm::elastic: {
       const double yh = p.grain_modulus * p.thickness;
@@ -420,22 +426,19 @@ void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, 
     }
     case ContactTerm::damping:
       add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
-        const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-        const Vec2 vr = relative_velocity(n, q, v, i, j, c.rx[k], c.ry[k]);
+        const auto [vr, m_eff] = motion(k);
         const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
-        const double fd = effective_mass(bodies, i, j) * p.gamma_n * vn;
+        const double fd = m_eff * p.gamma_n * vn;
         c.fn[k] += fd;
         return Vec2(fd * c.nx[k], fd * c.ny[k]);
       });
       return;
     case ContactTerm::friction:
       add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
-        const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-        const Vec2 vr = relative_velocity(n, q, v, i, j, c.rx[k], c.ry[k]);
+        const auto [vr, m_eff] = motion(k);
         const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
         const double vt = vr.x() * tx + vr.y() * ty;
-        const double ft = std::copysign(
-            std::min(effective_mass(bodies, i, j) * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
+        const double ft = std::copysign(std::min(m_eff * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
         return Vec2(ft * tx, ft * ty);
       });
       return;
