@@ -100,8 +100,7 @@ void Beams::beam_pass(std::span<const double> q) const {
   const BeamStiffness* stiffness = k_.data();
   BeamForce* out = force_.data();
   std::uint8_t* far = far_.data();
-  const Range mine = static_range(active_.size(), static_cast<std::size_t>(thread_index()),
-                                  static_cast<std::size_t>(thread_count()));
+  const Range mine = this_thread_range(active_.size());
 #pragma omp simd
   for (std::size_t k = mine.first; k < mine.last; ++k) {
     const auto b = static_cast<std::size_t>(active[k]);
@@ -131,7 +130,7 @@ void Beams::gather(std::span<double> f, bool add) const {
   const std::int32_t* beams_in = cell_count_.data();
   const CellBeam* beams_of = beams_of_.data();
   const BeamForce* out = force_.data();
-  const Range mine = static_range(n_, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
+  const Range mine = this_thread_range(n_);
   for (std::size_t c = mine.first; c < mine.last; ++c) {
     double sx = add ? fx[c] : 0.0, sy = add ? fy[c] : 0.0, st = add ? tz[c] : 0.0;
     for (auto s = start[c]; s < start[c] + beams_in[c]; ++s) {

@@ -34,7 +34,8 @@ class Beams {
   // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque). (Their power
   // is not bookkept as work: the beam law derives from an energy, which the ledger holds.)
   void add_forces(std::span<const double> q, std::span<double> f) const;
-  // The same forces written into f, replacing what is there (the same bits as add_forces onto zeros).
+  // The same forces written into f, replacing what is there (the same bits as add_forces onto zeros). Both
+  // run on threads of their own: call them outside a parallel region.
   void set_forces(std::span<const double> q, std::span<double> f) const;
   // The same in parts, team functions (core/parallel.hpp) for a caller that runs other work on the team in
   // between: before the team, reserve; beam_pass, each beam's force at q (this thread's part of the beams);

@@ -63,7 +63,7 @@ void ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const double half = 0.5 * skin_;
   const double* r = bodies_->bound_radius.data();
   bool stale = !built;
-  const Range mine = static_range(n, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
+  const Range mine = this_thread_range(n);
   for (std::size_t k = mine.first; k < mine.last; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
     const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
@@ -177,7 +177,8 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
 #pragma omp barrier
 #pragma omp single
   {
-    for (std::size_t b = 0; b < nt; ++b) neighbours_.insert(neighbours_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
+    for (std::size_t b = 0; b < nt; ++b)
+      neighbours_.insert(neighbours_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
     const std::size_t pairs = neighbours_.size();
     if (geometry_.size() < pairs) {
       geometry_.resize(pairs + pairs / 4);

@@ -84,8 +84,8 @@ class ContactSearch {
  public:
   ContactSearch() = default;
   ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies);
-  // Finds every overlapping pair at state q and fills `out` (cleared first). A team of its own (or the
-  // caller's: core/parallel.hpp).
+  // Finds every overlapping pair at state q and fills `out` (cleared first), on threads of its own: call it
+  // outside a parallel region.
   void find(std::span<const double> q, ContactList& out);
   // The same in parts, for a caller that runs other work on the same team in between (the model: the
   // beams). Before the team: reserve. Team functions: find_start (the world vertices of this thread's cells,
@@ -154,10 +154,10 @@ struct ContactParameters {
 // The force terms. q, v: state and velocities (flat layout of bodies.hpp). Each adds its force on every
 // contact to the contact's pair_force (equal and opposite on j, acting at R) and returns the power it delivers
 // to the bodies, W. add_contact_forces then adds the contacts' summed forces and their torques to the cells'
-// forces f (same layout), once for all the terms that ran. Each term is a team of its own (core/parallel.hpp);
-// contact_term runs one on the contacts [first, last) (a team's part; the terms of one contact in engine
-// order on one thread, since damping adds to fn and friction reads it), and contact_power sums a term's power
-// over the list in contact order.
+// forces f (same layout), once for all the terms that ran. Each term runs on threads of its own (call it
+// outside a parallel region). contact_term, a team function (core/parallel.hpp), runs one on the contacts
+// [first, last) (a team's part; the terms of one contact in engine order on one thread, since damping adds
+// to fn and friction reads it), and contact_power sums a term's power over the list in contact order.
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v);
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,

@@ -100,7 +100,8 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
     if (contact_list) {
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
       for (const Term term : terms_) {
-        if (term != Term::beams) contact_term(contact_term_of(term), contacts_, contact_parameters_, bodies_, q, v, mine);
+        if (term == Term::beams) continue;
+        contact_term(contact_term_of(term), contacts_, contact_parameters_, bodies_, q, v, mine);
       }
     }
 #pragma omp barrier
@@ -110,7 +111,8 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       if (contact_list) {
         search_.find_end(contacts_);
         for (const Term term : terms_) {
-          if (term != Term::beams) power_[static_cast<std::size_t>(term)] = contact_power(contacts_, contact_term_of(term));
+          if (term == Term::beams) continue;
+          power_[static_cast<std::size_t>(term)] = contact_power(contacts_, contact_term_of(term));
         }
         add_contact_forces(contacts_, bodies_.n, q, force_);  // the contact terms' forces, summed
       }
