@@ -15,11 +15,6 @@ void HomeFirstSchedule::reserve(std::size_t threads) {
   capacity_ = threads;
 }
 
-void HomeFirstSchedule::start(std::size_t items) {
-  start_mine(items);
-#pragma omp barrier
-}
-
 void HomeFirstSchedule::start_mine(std::size_t items) {
   const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
   const Range r = static_range(items, t, nt);

@@ -84,13 +84,11 @@ class TeamSlots {
 // when each writes its own slot, which thread does not change any result.
 class HomeFirstSchedule {
  public:
-  // Inside a parallel region, by every thread (ends with a barrier): the cursors over `items`.
-  void start(std::size_t items);
-  // The same without the barrier: this thread's cursor only (the caller's next barrier must come before
-  // run); and every thread's cursor, set by one thread of a team of nt (likewise).
+  // Inside a parallel region, by every thread: this thread's cursor over `items` (a barrier must come before
+  // run); or every thread's cursor, set by one thread of a team of nt (likewise).
   void start_mine(std::size_t items);
   void reset(std::size_t items, std::size_t nt);
-  // Inside the region, after start: body(first, last) on chunks of at most `chunk` items until none is left.
+  // Inside the region, after the cursors are set: body(first, last) on chunks of at most `chunk` items until none is left.
   template <class Body>
   void run(std::size_t chunk, Body&& body) {
     const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());

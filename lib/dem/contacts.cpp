@@ -8,22 +8,12 @@
 
 namespace frac::dem {
 
-void ContactList::clear() { resize(0); }
-
 void ContactList::reserve(std::size_t count) {
   if (count <= room()) return;
   for (auto* a : {&i, &j}) a->resize(count);
   for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &fn}) a->resize(count);
   for (auto& a : term_power) a.resize(count);
   pair_force.resize(count);
-}
-
-void ContactList::resize(std::size_t count) {
-  reserve(count);
-  for (std::size_t k = count_; k < count; ++k) pair_force[k] = {0.0, 0.0};
-  count_ = count;
-  blocks = 0;
-  candidate_pairs = enclosed = multi_crossing = 0;
 }
 
 Range ContactList::mine() const {

@@ -48,15 +48,11 @@ struct ContactList {
   std::vector<double> area;     // overlap area, m^2
   std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
   std::vector<double> fn;       // normal force on i along n (elastic + damping), N; negative = repulsive
-  // The force on i summed over the terms that ran (zero after ContactSearch::find, resize and clear_forces;
+  // The force on i summed over the terms that ran (zero after ContactSearch::find and clear_forces;
   // each term adds its own), and the power of each term on each contact (summed by contact_power).
   std::vector<PairForce> pair_force;
   std::array<std::vector<double>, static_cast<std::size_t>(ContactTerm::count)> term_power;
-  std::size_t size() const { return count_; }
-  void clear();
-  // Makes room for `count` contacts and sets the size (entries not yet set; new pair forces zero) and zeroes
-  // the diagnostics.
-  void resize(std::size_t count);
+  std::size_t size() const { return count_; }  // (set by ContactSearch::find_end)
   // Room for `count` contacts (never shrinks; the size is unchanged).
   void reserve(std::size_t count);
   std::size_t room() const { return i.size(); }

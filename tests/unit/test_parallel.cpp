@@ -66,7 +66,8 @@ TEST(Parallel, HomeFirstScheduleRunsEveryItemOnce) {
         std::vector<std::size_t> order;
 #pragma omp parallel num_threads(threads)
         {
-          schedule.start(items);
+          schedule.start_mine(items);
+#pragma omp barrier
           schedule.run(chunk, [&](std::size_t first, std::size_t last) {
             for (std::size_t k = first; k < last; ++k) {
               // Uneven costs: the first items are heavy, so the other threads run out of their own early.
