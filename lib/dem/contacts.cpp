@@ -17,9 +17,8 @@ void ContactList::reserve(std::size_t count) {
 }
 
 Range ContactList::mine() const {
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  if (blocks == nt) return block[t];
-  return static_range(size(), t, nt);
+  if (blocks == static_cast<std::size_t>(thread_count())) return block[static_cast<std::size_t>(thread_index())];
+  return this_thread_range(size());
 }
 
 ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
@@ -255,7 +254,7 @@ void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& 
   block.multi_crossing = multi_crossing;
 }
 
-void ContactSearch::reserve(std::size_t threads, ContactList& out) {
+void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (blocks_.size() < threads) blocks_.resize(threads);
   if (thread_pairs_.size() < threads) thread_pairs_.resize(threads);
   if (out.block.size() < threads) out.block.resize(threads);
@@ -265,7 +264,7 @@ void ContactSearch::reserve(std::size_t threads, ContactList& out) {
 }
 
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
-  reserve(static_cast<std::size_t>(max_threads()), out);
+  reserve_threads(static_cast<std::size_t>(max_threads()), out);
   as_team(bodies_->n > kMinParallelItems, [&] {
     find_start(q);
     find_finish(q, out);

@@ -84,11 +84,11 @@ class ContactSearch {
   // outside a parallel region.
   void find(std::span<const double> q, ContactList& out);
   // The same in parts, for a caller that runs other work on the same team in between (the model: the
-  // beams). Before the team: reserve. Team functions: find_start (the world vertices of this thread's cells,
-  // no barrier at its end), find_finish (the neighbour list, the pair tests, the list filled: each thread
-  // its block, out.mine(); no barrier at its end). After a barrier, by one thread: find_end (the list's size
-  // and diagnostics).
-  void reserve(std::size_t threads, ContactList& out);
+  // beams). Before the team: reserve_threads. Team functions: find_start (the world vertices of this
+  // thread's cells, no barrier at its end), find_finish (the neighbour list, the pair tests, the list
+  // filled: thread t its block, out.block[t]; no barrier at its end). After a barrier, by one thread:
+  // find_end (the list's size, `blocks` and diagnostics).
+  void reserve_threads(std::size_t threads, ContactList& out);
   void find_start(std::span<const double> q);
   void find_finish(std::span<const double> q, ContactList& out);
   void find_end(ContactList& out);

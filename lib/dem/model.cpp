@@ -73,7 +73,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   const bool beams_on = !terms_.empty() && terms_.front() == Term::beams;
   const bool contact_list = physics_.contacts;
   const auto most = static_cast<std::size_t>(max_threads());
-  if (contact_list) search_.reserve(most, contacts_);
+  if (contact_list) search_.reserve_threads(most, contacts_);
   if (beams_on) beams_.reserve();
   zero_.reserve(most);
   const double* inv_mass = inv_mass_.data();
@@ -98,6 +98,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
     }
     if (beams_on) beams_.gather(force_, false);  // (delivers its power through the beam energy, not as work)
     if (contact_list) {
+      // The block this thread filled (not contacts_.mine(): the list's `blocks` is set after the barrier).
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
       for (const Term term : terms_) {
         if (term == Term::beams) continue;
