@@ -1,8 +1,10 @@
 #include "io/series.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "core/error.hpp"
+#include "io/chunk_codec.hpp"
 
 namespace frac::io {
 namespace {
@@ -67,58 +69,89 @@ SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsi
   const hid_t ftype = type == SeriesType::float64 ? H5T_IEEE_F64LE
                       : type == SeriesType::int64 ? H5T_STD_I64LE
                                                   : H5T_STD_U8LE;
-  value_ = create_extendible(group_, "value", ftype, frame_dims_, frame_size_ >= 64);
+  value_type_ = type == SeriesType::float64 ? H5T_NATIVE_DOUBLE
+                : type == SeriesType::int64 ? H5T_NATIVE_INT64
+                                            : H5T_NATIVE_UINT8;
+  value_bytes_ = type == SeriesType::uint8 ? 1 : 8;
+  const bool compress = frame_size_ >= 64;
+  value_ = create_extendible(group_, "value", ftype, frame_dims_, compress);
+  // Chunks encoded here hold the file's bytes: the native types must be the file's (little-endian) ones.
+  compressed_ = compress && std::endian::native == std::endian::little;
   group_.set_attr("unit", "s", "time");
   if (!unit.empty()) group_.set_attr("unit", unit, "value");
 }
 
-void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, std::size_t value_bytes,
-                              const void* frame, std::size_t count) {
+void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame,
+                              std::size_t count) {
   if (count != frame_size_)
     throw RuntimeError(group_.where("value") + ": frame of " + std::to_string(count) + " values, expected " +
                        std::to_string(frame_size_));
-  if (mem_type != buffered_type_) {
-    flush();
-    buffered_type_ = mem_type;
-  }
+  if (H5Tequal(mem_type, value_type_) <= 0)
+    throw RuntimeError(group_.where("value") + ": frame of another type than the series'");
   if (rows_per_chunk_ == 1) {
     // A frame fills a chunk: written at once, from the caller's memory (no copy of a large frame).
-    write_rows(&step, &time, frame, 1);
-    ++frames_;
+    write_steps(&step, &time, 1);
+    write_values(frames_, frame, 1);
+    written_ = ++frames_;
+    chunk_first_ = frames_;
     return;
   }
   step_buffer_.push_back(step);
   time_buffer_.push_back(time);
   const auto* bytes = static_cast<const unsigned char*>(frame);
-  value_buffer_.insert(value_buffer_.end(), bytes, bytes + count * value_bytes);
+  value_buffer_.insert(value_buffer_.end(), bytes, bytes + count * value_bytes_);
   ++frames_;
-  if (frames_ - written_ >= rows_per_chunk_) flush();
+  if (frames_ - chunk_first_ >= rows_per_chunk_) flush();
 }
 
-void SeriesWriter::write_rows(const std::int64_t* step, const double* time, const void* values, std::size_t rows) {
+void SeriesWriter::write_steps(const std::int64_t* step, const double* time, std::size_t rows) {
   append_rows(group_, "step", step_, H5T_NATIVE_INT64, step, written_, rows, {});
   append_rows(group_, "time", time_, H5T_NATIVE_DOUBLE, time, written_, rows, {});
-  append_rows(group_, "value", value_, buffered_type_, values, written_, rows, frame_dims_);
-  written_ += rows;
+}
+
+void SeriesWriter::write_values(std::size_t first, const void* values, std::size_t rows) {
+  if (!compressed_) {
+    append_rows(group_, "value", value_, value_type_, values, first, rows, frame_dims_);
+    return;
+  }
+  std::vector<hsize_t> dims{first + rows}, offset{first};
+  for (auto d : frame_dims_) {
+    dims.push_back(d);
+    offset.push_back(0);
+  }
+  if (H5Dset_extent(value_.get(), dims.data()) < 0)
+    throw RuntimeError(group_.where("value") + ": cannot extend dataset");
+  const std::size_t row_bytes = frame_size_ * value_bytes_;  // (a chunk not yet full is encoded with zeros)
+  const auto encoded = shuffle_deflate({static_cast<const unsigned char*>(values), rows * row_bytes}, value_bytes_,
+                                       rows_per_chunk_ * row_bytes);
+  if (H5Dwrite_chunk(value_.get(), H5P_DEFAULT, 0, offset.data(), encoded.size(), encoded.data()) < 0)
+    throw RuntimeError(group_.where("value") + ": cannot write frames " + std::to_string(first) + " to " +
+                       std::to_string(first + rows - 1));
 }
 
 void SeriesWriter::flush() {
   const std::size_t rows = frames_ - written_;
   if (rows == 0) return;
-  write_rows(step_buffer_.data(), time_buffer_.data(), value_buffer_.data(), rows);
+  write_steps(step_buffer_.data(), time_buffer_.data(), rows);
+  write_values(chunk_first_, value_buffer_.data(), frames_ - chunk_first_);
+  written_ = frames_;
   step_buffer_.clear();
   time_buffer_.clear();
-  value_buffer_.clear();
+  // A partly filled compressed chunk stays buffered: the frames still to come are encoded with it.
+  if (!compressed_ || frames_ - chunk_first_ >= rows_per_chunk_) {
+    value_buffer_.clear();
+    chunk_first_ = frames_;
+  }
 }
 
 void SeriesWriter::append(std::int64_t step, double time, std::span<const double> frame) {
-  append_raw(step, time, H5T_NATIVE_DOUBLE, sizeof(double), frame.data(), frame.size());
+  append_raw(step, time, H5T_NATIVE_DOUBLE, frame.data(), frame.size());
 }
 void SeriesWriter::append(std::int64_t step, double time, std::span<const std::uint8_t> frame) {
-  append_raw(step, time, H5T_NATIVE_UINT8, sizeof(std::uint8_t), frame.data(), frame.size());
+  append_raw(step, time, H5T_NATIVE_UINT8, frame.data(), frame.size());
 }
 void SeriesWriter::append(std::int64_t step, double time, std::span<const std::int64_t> frame) {
-  append_raw(step, time, H5T_NATIVE_INT64, sizeof(std::int64_t), frame.data(), frame.size());
+  append_raw(step, time, H5T_NATIVE_INT64, frame.data(), frame.size());
 }
 
 SeriesInfo read_series_info(const Group& parent, std::string_view name) {

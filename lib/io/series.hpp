@@ -3,9 +3,11 @@
 // value [T, ...] (one frame of fixed shape per entry), extendible, chunked and compressed, so a run can
 // append frames as it goes and never holds its trajectory in memory. Frames are buffered up to one chunk of
 // the value dataset (at most 64 Ki values) and written a chunk at a time: one HDF5 write per chunk instead of
-// three per frame (an observable sampled every few steps otherwise costs more than the step); a frame that
-// fills a chunk by itself is written at once, without a copy. flush() writes what is buffered; the owner
-// calls it before the file is closed. Read back whole, or one frame.
+// three per frame (an observable sampled every few steps otherwise costs more than the step). A compressed
+// value chunk (frames of 64 values or more) is encoded here (io/chunk_codec) and written whole with
+// H5Dwrite_chunk; a frame that fills a chunk by itself is encoded from the caller's memory, without a copy.
+// flush() writes what is buffered (a partly filled chunk is kept and written again, whole, when it fills);
+// the owner calls it before the file is closed. Read back whole, or one frame.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -30,21 +32,26 @@ class SeriesWriter {
   std::size_t frames() const { return frames_; }  // appended, written or not
 
  private:
-  void append_raw(std::int64_t step, double time, hid_t mem_type, std::size_t value_bytes, const void* frame,
-                  std::size_t count);
-  // Writes `rows` frames (values of the buffered type) after the ones in the file.
-  void write_rows(const std::int64_t* step, const double* time, const void* values, std::size_t rows);
+  void append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame, std::size_t count);
+  // The step and time of the frames after the ones in the file (`rows` of them).
+  void write_steps(const std::int64_t* step, const double* time, std::size_t rows);
+  // The value chunk that starts at frame `first`, from `rows` frames of values (compressed: encoded and written
+  // whole, padded with zeros to a full chunk; else: those frames written after the ones in the file).
+  void write_values(std::size_t first, const void* values, std::size_t rows);
   Group group_;
   Hid step_, time_, value_;
   std::vector<hsize_t> frame_dims_;
   std::size_t frame_size_ = 1;
+  hid_t value_type_ = -1;  // memory type of the values (the native type of the series' file type)
+  std::size_t value_bytes_ = 0;
+  bool compressed_ = false;  // value chunks are encoded here and written whole
   std::size_t frames_ = 0;   // appended
   std::size_t written_ = 0;  // in the file
   std::size_t rows_per_chunk_ = 1;
-  hid_t buffered_type_ = -1;  // memory type of the buffered values
-  std::vector<std::int64_t> step_buffer_;
-  std::vector<double> time_buffer_;
-  std::vector<unsigned char> value_buffer_;
+  std::size_t chunk_first_ = 0;  // first frame of the chunk being filled, whose values are buffered
+  std::vector<std::int64_t> step_buffer_;      // frames [written_, frames_)
+  std::vector<double> time_buffer_;            // frames [written_, frames_)
+  std::vector<unsigned char> value_buffer_;    // frames [chunk_first_, frames_)
 };
 
 struct SeriesInfo {

@@ -231,6 +231,44 @@ TEST(Io, SeriesWriteEveryFrameAcrossChunks) {
   fs::remove_all(dir);
 }
 
+// A compressed series flushed in the middle of a chunk (the chunk is written, padded, then written again
+// whole when more frames come) reads back every frame, through HDF5's own shuffle and deflate filters.
+TEST(Io, SeriesFlushedMidChunkReadsBackThroughTheDatasetsFilters) {
+  const auto dir = temp_dir("series-flush");
+  const auto path = (dir / "s.h5").string();
+  const std::size_t values = 1000, frames = 150;  // 65 frames a chunk: three chunks, the last partly filled
+  auto value = [](std::size_t f, std::size_t k) { return std::sin(1e-3 * static_cast<double>(f * values + k)); };
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::SeriesWriter a(out.root(), "a", {values}, "m");
+    std::vector<double> frame(values);
+    for (std::size_t f = 0; f < frames; ++f) {
+      for (std::size_t k = 0; k < values; ++k) frame[k] = value(f, k);
+      a.append(static_cast<std::int64_t>(f), static_cast<double>(f), std::span<const double>(frame));
+      if (f == 1 || f == 2 || f == 70 || f == 140) a.flush();  // mid-chunk, twice in a row, in later chunks
+    }
+    a.flush();
+    out.commit();
+  }
+  const auto root = io::open_input(path);
+  ASSERT_EQ(io::read_series_info(root, "a").step.size(), frames);
+  const auto all = root.group("a").read<double>("value", nullptr, 2);
+  ASSERT_EQ(all.size(), frames * values);
+  for (std::size_t f = 0; f < frames; ++f)
+    for (std::size_t k = 0; k < values; ++k) ASSERT_EQ(all[f * values + k], value(f, k)) << "frame " << f;
+  // The dataset's pipeline is HDF5's shuffle, then deflate: what any reader decodes the chunks with.
+  io::Hid d(H5Dopen2(root.group("a").id(), "value", H5P_DEFAULT));
+  io::Hid dcpl(H5Dget_create_plist(d.get()));
+  ASSERT_EQ(H5Pget_nfilters(dcpl.get()), 2);
+  unsigned flags = 0;
+  std::size_t cd_count = 0;
+  EXPECT_EQ(H5Pget_filter2(dcpl.get(), 0, &flags, &cd_count, nullptr, 0, nullptr, nullptr), H5Z_FILTER_SHUFFLE);
+  cd_count = 0;
+  EXPECT_EQ(H5Pget_filter2(dcpl.get(), 1, &flags, &cd_count, nullptr, 0, nullptr, nullptr), H5Z_FILTER_DEFLATE);
+  fs::remove_all(dir);
+}
+
 TEST(Io, RefusesUnknownVersionKindAndMissingMesh) {
   const auto dir = temp_dir("refuse");
   const auto path = (dir / "v.h5").string();
