@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "io/chunk_codec.hpp"
 
 namespace frac::io {
 
@@ -90,6 +91,14 @@ Hid transfer_for(hid_t mem_type, hid_t file_type, hsize_t count) {
 
 }  // namespace
 
+bool encodes_chunks(hid_t mem_type, hid_t file_type) { return H5Tequal(mem_type, file_type) > 0; }
+
+herr_t write_encoded_chunk(hid_t d, const std::vector<hsize_t>& offset, std::span<const unsigned char> data,
+                           std::size_t element_size, std::size_t chunk_bytes) {
+  const auto encoded = shuffle_deflate(data, element_size, chunk_bytes);
+  return H5Dwrite_chunk(d, H5P_DEFAULT, 0, offset.data(), encoded.size(), encoded.data());
+}
+
 Group::Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive)
     : keep_alive_(std::move(keep_alive)), hid_(std::move(id)), file_(std::move(file)), path_(std::move(path)) {}
 
@@ -147,20 +156,33 @@ void Group::write_raw(std::string_view name, hid_t mem_type, hid_t file_type, co
   H5Pset_create_intermediate_group(lcpl.get(), 1);
   Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_obj_track_times(dcpl.get(), 0);
+  hsize_t chunk_rows = 0, row = 1;  // (chunked: rows a chunk, and values a row)
   if (count >= kCompressFrom && !dims.empty()) {
     std::vector<hsize_t> chunk = dims;
-    hsize_t row = 1;
     for (std::size_t k = 1; k < dims.size(); ++k) row *= dims[k];
-    chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, row)));
+    chunk_rows = chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, row)));
     H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data());
     H5Pset_shuffle(dcpl.get());
     H5Pset_deflate(dcpl.get(), 1);
   }
   Hid d(H5Dcreate2(id(), std::string(name).c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT));
   if (d.get() < 0) throw RuntimeError(where(name) + ": cannot create dataset");
-  if (count > 0 &&
-      H5Dwrite(d.get(), mem_type, H5S_ALL, H5S_ALL, transfer_for(mem_type, file_type, count).get(), data) < 0)
+  if (count > 0 && chunk_rows > 0 && encodes_chunks(mem_type, file_type)) {
+    // Compressed: chunk by chunk, encoded here (io/chunk_codec: ~3 times as fast as HDF5's deflate filter).
+    const std::size_t element = H5Tget_size(file_type), row_bytes = element * row;
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    std::vector<hsize_t> offset(dims.size(), 0);
+    for (hsize_t first = 0; first < dims[0]; first += chunk_rows) {
+      const hsize_t rows = std::min(chunk_rows, dims[0] - first);
+      offset[0] = first;
+      if (write_encoded_chunk(d.get(), offset, {bytes + first * row_bytes, rows * row_bytes}, element,
+                              chunk_rows * row_bytes) < 0)
+        throw RuntimeError(where(name) + ": cannot write dataset");
+    }
+  } else if (count > 0 &&
+             H5Dwrite(d.get(), mem_type, H5S_ALL, H5S_ALL, transfer_for(mem_type, file_type, count).get(), data) < 0) {
     throw RuntimeError(where(name) + ": cannot write dataset");
+  }
   if (!unit.empty()) set_attr("unit", unit, name);
 }
 

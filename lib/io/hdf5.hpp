@@ -39,6 +39,16 @@ class Hid {
 // Silences HDF5's own error printing: we report errors ourselves, naming file and object.
 void silence_hdf5_errors();
 
+// Whether chunks of a dataset of `file_type`, written from memory of `mem_type`, can be encoded by us
+// (write_encoded_chunk): the two types must be the same bytes (native little-endian types to LE file types).
+bool encodes_chunks(hid_t mem_type, hid_t file_type);
+// Writes the chunk at `offset` of the chunked dataset `d`, whose pipeline is shuffle then deflate (the
+// datasets io/ creates compressed): `data`, whole elements of `element_size` bytes, then zeros up to
+// `chunk_bytes`, encoded by io/chunk_codec and written with H5Dwrite_chunk. The chunk must lie within the
+// dataset's extent. Returns H5Dwrite_chunk's status.
+herr_t write_encoded_chunk(hid_t d, const std::vector<hsize_t>& offset, std::span<const unsigned char> data,
+                           std::size_t element_size, std::size_t chunk_bytes);
+
 // A group (or the root group of a file), with the file's name for messages.
 class Group {
  public:

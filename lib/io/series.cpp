@@ -1,10 +1,8 @@
 #include "io/series.hpp"
 
 #include <algorithm>
-#include <bit>
 
 #include "core/error.hpp"
-#include "io/chunk_codec.hpp"
 
 namespace frac::io {
 namespace {
@@ -75,8 +73,7 @@ SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsi
   value_bytes_ = type == SeriesType::uint8 ? 1 : 8;
   const bool compress = frame_size_ >= 64;
   value_ = create_extendible(group_, "value", ftype, frame_dims_, compress);
-  // Chunks encoded here hold the file's bytes: the native types must be the file's (little-endian) ones.
-  compressed_ = compress && std::endian::native == std::endian::little;
+  compressed_ = compress && encodes_chunks(value_type_, ftype);
   group_.set_attr("unit", "s", "time");
   if (!unit.empty()) group_.set_attr("unit", unit, "value");
 }
@@ -122,9 +119,8 @@ void SeriesWriter::write_values(std::size_t first, const void* values, std::size
   if (H5Dset_extent(value_.get(), dims.data()) < 0)
     throw RuntimeError(group_.where("value") + ": cannot extend dataset");
   const std::size_t row_bytes = frame_size_ * value_bytes_;  // (a chunk not yet full is encoded with zeros)
-  const auto encoded = shuffle_deflate({static_cast<const unsigned char*>(values), rows * row_bytes}, value_bytes_,
-                                       rows_per_chunk_ * row_bytes);
-  if (H5Dwrite_chunk(value_.get(), H5P_DEFAULT, 0, offset.data(), encoded.size(), encoded.data()) < 0)
+  if (write_encoded_chunk(value_.get(), offset, {static_cast<const unsigned char*>(values), rows * row_bytes},
+                          value_bytes_, rows_per_chunk_ * row_bytes) < 0)
     throw RuntimeError(group_.where("value") + ": cannot write frames " + std::to_string(first) + " to " +
                        std::to_string(first + rows - 1));
 }
