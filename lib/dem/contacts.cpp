@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "geometry/overlap.hpp"
 
 namespace frac::dem {
+namespace {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+}  // namespace
 
 void ContactList::reserve(std::size_t count) {
   if (count <= room()) return;
@@ -39,9 +43,11 @@ ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
   }
 }
 
-// Vertices of this thread's cells in world coordinates, and whether the neighbour list is stale: some cell
-// may have moved a vertex by more than skin/2 since the last build (centroid displacement plus bounding
-// radius times rotation; NaN counts as moved), into this thread's stale_ slot.
+// Vertices of this thread's cells in world coordinates, and how far its cells' centroids have moved since the
+// neighbour list was built: the two largest distances, into this thread's moved_ slot (NaN counts as
+// infinitely far). A polygon never leaves its bounding circle about its centroid, whatever it turns, so a pair
+// left out of the list (circles more than the skin apart) cannot overlap while the two largest distances sum
+// to at most the skin.
 void ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const std::size_t n = bodies_->n;
   const double* x = q.data();
@@ -49,9 +55,7 @@ void ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const double* phi = y + n;
   const bool built = ref_.size() == q.size();
   const double* ref = ref_.data();
-  const double half = 0.5 * skin_;
-  const double* r = bodies_->bound_radius.data();
-  bool stale = !built;
+  Moved moved{built ? 0.0 : kInfinity, built ? 0.0 : kInfinity};
   const Range mine = this_thread_range(n);
   for (std::size_t k = mine.first; k < mine.last; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
@@ -63,11 +67,11 @@ void ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
     }
     if (built) {
       const double dx = x[k] - ref[k], dy = y[k] - ref[n + k];
-      const double moved = std::sqrt(dx * dx + dy * dy) + r[k] * std::abs(phi[k] - ref[2 * n + k]);
-      stale = stale || !(moved <= half);
+      const double d2 = dx * dx + dy * dy;
+      if (!(d2 <= moved.second * moved.second)) moved.add(std::isnan(d2) ? kInfinity : std::sqrt(d2));  // (rarely)
     }
   }
-  stale_.mine() = stale;
+  moved_.mine() = moved;
 }
 
 void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
@@ -138,17 +142,21 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
     for (std::size_t ny = (cy > 0 ? cy - 1 : 0); ny <= std::min(gy - 1, cy + 1); ++ny) {
       for (std::size_t nxc = (cx > 0 ? cx - 1 : 0); nxc <= std::min(gx - 1, cx + 1); ++nxc) {
         const std::size_t c = ny * gx + nxc;
-        for (auto s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
+        // A grid cell's bodies are in order of index: skip to the first j > i (one loop exit to predict per
+        // grid cell, rather than a coin toss per body).
+        auto s = cell_start_[c];
+        const auto end = cell_start_[c + 1];
+        while (s < end && static_cast<std::size_t>(sorted_[static_cast<std::size_t>(s)]) <= i) ++s;
+        for (; s < end; ++s) {
           const auto j = static_cast<std::size_t>(sorted_[static_cast<std::size_t>(s)]);
-          if (j <= i) continue;
           const double dx = x[j] - x[i], dy = y[j] - y[i];
           const double reach = r[i] + r[j] + skin_;
           if (dx * dx + dy * dy >= reach * reach) continue;
           const auto* const begin = previous_.data() + previous_first_[i];
-          const auto* const end = previous_.data() + previous_first_[i + 1];
+          const auto* const last = previous_.data() + previous_first_[i + 1];
           const auto* const known =
-              std::find_if(begin, end, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
-          if (known != end) {
+              std::find_if(begin, last, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
+          if (known != last) {
             buf.push_back(*known);
             continue;
           }
@@ -259,7 +267,7 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (thread_pairs_.size() < threads) thread_pairs_.resize(threads);
   if (out.block.size() < threads) out.block.resize(threads);
   pair_schedule_.reserve(threads);
-  stale_.reserve(threads);
+  moved_.reserve(threads);
   candidates_.reserve(threads);
 }
 
@@ -291,8 +299,12 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   // What the list has room for, read before anyone can change it (behind the barrier).
   const bool room = out.room() >= neighbours_.size();
 #pragma omp barrier
-  bool stale = false;
-  for (std::size_t s = 0; s < nt; ++s) stale = stale || stale_[s] != 0;
+  Moved moved;  // the two largest distances over all cells
+  for (std::size_t s = 0; s < nt; ++s) {
+    moved.add(moved_[s].largest);
+    moved.add(moved_[s].second);
+  }
+  const bool stale = !(moved.largest + moved.second <= skin_);
   if (stale) {
     rebuild(q, out);
   } else if (!room) {

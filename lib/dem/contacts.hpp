@@ -111,9 +111,9 @@ class ContactSearch {
   std::vector<std::int32_t> sorted_;
   void rebuild(std::span<const double> q, ContactList& out);  // a team function, barriers at its ends
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
-  // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when some
-  // vertex may have moved by more than skin/2 since the last build (centroid displacement plus bounding
-  // radius times rotation), so no pair can start to overlap unseen.
+  // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when two cells'
+  // centroids may together have moved by more than the skin since the last build, so no pair can start to
+  // overlap unseen.
   double skin_ = 0;
   std::vector<double> ref_;  // q at the last build
   struct NeighbourPair {
@@ -127,7 +127,18 @@ class ContactSearch {
   std::vector<std::int32_t> previous_first_;  // its first pair of each cell i (pairs are in order of i)
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
   std::size_t grid_x_ = 0, grid_y_ = 0;                   // the rebuild's grid (0: no finite grid)
-  TeamSlots<char> stale_;                                 // per thread: some cell of its moved too far
+  struct Moved {  // the two largest distances that cells' centroids moved since the build, m
+    double largest = 0, second = 0;
+    void add(double d) {
+      if (d > largest) {
+        second = largest;
+        largest = d;
+      } else if (d > second) {
+        second = d;
+      }
+    }
+  };
+  TeamSlots<Moved> moved_;                                // per thread
   TeamSlots<std::int64_t> candidates_;                    // per thread: candidate pairs it tested
   std::size_t teams_ = 1;                                 // threads of the team of the last find
   struct Block {  // one thread's block of pairs in the list fill

@@ -331,8 +331,37 @@ Sample random_overlaps(std::uint64_t seed, double jiggle) {
   return s;
 }
 
+// By brute force at state q: the pairs whose bounding circles overlap, and those whose polygons overlap
+// (clipped directly; a polygon never leaves its circle).
+struct BruteForcePairs {
+  std::size_t circles = 0;
+  std::set<std::pair<int, int>> overlapping;
+};
+BruteForcePairs brute_force_pairs(const CellMesh& mesh, const Bodies& bodies, const std::vector<double>& q) {
+  const std::size_t n = mesh.cells();
+  std::vector<std::vector<Vec2>> world(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double c = std::cos(q[2 * n + k]), sn = std::sin(q[2 * n + k]);
+    for (const Vec2& p : mesh.polygon(k))
+      world[k].emplace_back(q[k] + c * p.x() - sn * p.y(), q[n + k] + sn * p.x() + c * p.y());
+  }
+  BruteForcePairs out;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double dx = q[j] - q[i], dy = q[n + j] - q[n + i];
+      const double reach = bodies.bound_radius[i] + bodies.bound_radius[j];
+      if (!(dx * dx + dy * dy < reach * reach)) continue;  // (the search's own circle test)
+      ++out.circles;
+      const auto g = frac::geometry::convex_overlap(world[i], world[j], Vec2(q[i], q[n + i]), Vec2(q[j], q[n + j]),
+                                                    bodies.length_scale);
+      if (g.kind != frac::geometry::ContactGeometry::Kind::none)
+        out.overlapping.insert({static_cast<int>(i), static_cast<int>(j)});
+    }
+  return out;
+}
+
 TEST(DemContacts, SearchFindsEveryOverlappingPair) {
-  // The cell list with bounding-circle culling against all N(N−1)/2 pairs clipped directly.
+  // The cell list with bounding-circle culling against all N(N−1)/2 pairs.
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     const Sample s = random_overlaps(seed, 0.15);
     Material mat;
@@ -343,24 +372,51 @@ TEST(DemContacts, SearchFindsEveryOverlappingPair) {
     std::set<std::pair<int, int>> found;
     for (std::size_t k = 0; k < list.size(); ++k) found.insert({list.i[k], list.j[k]});
     EXPECT_EQ(found.size(), list.size()) << "a pair listed twice";
+    const BruteForcePairs brute = brute_force_pairs(s.mesh, bodies, s.q);
+    EXPECT_EQ(found, brute.overlapping);
+    EXPECT_EQ(static_cast<std::size_t>(list.candidate_pairs), brute.circles);
+    EXPECT_GT(list.size(), s.mesh.cells()) << "the test needs many overlaps";
+  }
+}
+
+// The neighbour list kept from state to state (rebuilt only when two cells may together have moved by more
+// than its skin) misses no pair whose bounding circles overlap, let alone one whose polygons do: every cell
+// drifting at up to 0.05 lattice spacings a step (pairs closing at up to 0.14) and turning by up to 0.3 rad a
+// step (turning cannot take a polygon out of its circle), against brute force at every state; on one and on
+// two threads. (A rule that let each cell move by the whole skin misses circle pairs here.)
+TEST(DemContacts, NeighbourListKeptAcrossStatesMissesNoPair) {
+  for (const int threads : {1, 2}) {
+    const int before = frac::max_threads();
+    frac::set_threads(threads);
+    Sample s = random_overlaps(4, 0.02);
     const std::size_t n = s.mesh.cells();
-    std::vector<std::vector<Vec2>> world(n);
+    const double g = s.mesh.spacing;
+    Material mat;
+    const Bodies bodies = frac::dem::make_bodies(s.mesh, mat);
+    ContactSearch search(s.mesh, bodies);
+    ContactList list;
+    frac::Rng rng(99);
+    std::vector<double> drift(3 * n);
     for (std::size_t k = 0; k < n; ++k) {
-      const double c = std::cos(s.q[2 * n + k]), sn = std::sin(s.q[2 * n + k]);
-      for (const Vec2& p : s.mesh.polygon(k))
-        world[k].emplace_back(s.q[k] + c * p.x() - sn * p.y(), s.q[n + k] + sn * p.x() + c * p.y());
+      const double speed = 0.05 * g * rng.uniform(0, 1), angle = 2 * std::numbers::pi * rng.uniform(0, 1);
+      drift[k] = speed * std::cos(angle);
+      drift[n + k] = speed * std::sin(angle);
+      drift[2 * n + k] = 0.3 * rng.uniform(-1, 1);
     }
-    std::size_t brute = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const auto g = frac::geometry::convex_overlap(world[i], world[j], Vec2(s.q[i], s.q[n + i]),
-                                                      Vec2(s.q[j], s.q[n + j]), bodies.length_scale);
-        if (g.kind == frac::geometry::ContactGeometry::Kind::none) continue;
-        ++brute;
-        EXPECT_TRUE(found.count({static_cast<int>(i), static_cast<int>(j)})) << "missed pair " << i << "-" << j;
-      }
-    EXPECT_EQ(brute, list.size());
-    EXPECT_GT(list.size(), n) << "the test needs many overlaps";
+    const int states = 60;
+    for (int step = 0; step < states; ++step) {
+      search.find(s.q, list);
+      std::set<std::pair<int, int>> found;
+      for (std::size_t k = 0; k < list.size(); ++k) found.insert({list.i[k], list.j[k]});
+      const BruteForcePairs brute = brute_force_pairs(s.mesh, bodies, s.q);
+      ASSERT_EQ(static_cast<std::size_t>(list.candidate_pairs), brute.circles) << "state " << step << ", " << threads
+                                                                               << " threads";
+      ASSERT_EQ(found, brute.overlapping) << "state " << step << ", " << threads << " threads";
+      for (std::size_t k = 0; k < 3 * n; ++k) s.q[k] += drift[k];
+    }
+    // The list was kept between rebuilds (else the test shows nothing).
+    EXPECT_LT(search.rebuilds(), states / 2);
+    frac::set_threads(before);
   }
 }
 
