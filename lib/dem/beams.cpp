@@ -85,39 +85,43 @@ void Beams::reserve() const {
   if (far_.size() < active_.size()) far_.resize(active_.size());
 }
 
-void Beams::beam_pass(std::span<const double> q) const {
+template <class BeamOf, class Use>
+void Beams::each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+                          Use&& use) const {
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  // Forces in parallel (each beam its own slot); each cell then gathers its intact beams in beam order (gather):
-  // the same bits whatever the thread count. First the branch-free formula of a beam near its reference
-  // orientation (no library call, no unpredictable branch; GCC vectorises it where the target has gathers,
-  // e.g. -mavx2); then the beams it does not cover (rotated by more than π/8: the spinning fragments of an
-  // explosion), one at a time, on the same thread (no barrier between).
-  const std::int32_t* active = active_.data();
   const std::int32_t *cell_i = i_.data(), *cell_j = j_.data();
   const double *e0x = e0x_.data(), *e0y = e0y_.data(), *l0 = l0_.data();
   const BeamStiffness* stiffness = k_.data();
-  BeamForce* out = force_.data();
   std::uint8_t* far = far_.data();
-  const Range mine = this_thread_range(active_.size());
 #pragma omp simd
-  for (std::size_t k = mine.first; k < mine.last; ++k) {
-    const auto b = static_cast<std::size_t>(active[k]);
+  for (std::size_t k = first; k < last; ++k) {
+    const std::size_t b = beam_of(k);
     const auto i = static_cast<std::size_t>(cell_i[b]), j = static_cast<std::size_t>(cell_j[b]);
     BeamResponse r;
     const bool near = beam_response_near_reference(x[j] - x[i], y[j] - y[i], e0x[b], e0y[b], phi[i], phi[j], l0[b],
                                                    stiffness[b], r);
-    out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
+    use(k, b, r);
     far[k] = !near;
   }
-  for (std::size_t k = mine.first; k < mine.last; ++k) {
+  for (std::size_t k = first; k < last; ++k) {
     if (far[k]) {
-      const auto b = static_cast<std::size_t>(active[k]);
-      const BeamResponse r = response(b, q);
-      out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
+      const std::size_t b = beam_of(k);
+      use(k, b, response(b, q));
     }
   }
+}
+
+void Beams::beam_pass(std::span<const double> q) const {
+  // Forces in parallel (each beam its own slot); each cell then gathers its intact beams in beam order (gather):
+  // the same bits whatever the thread count.
+  const std::int32_t* active = active_.data();
+  BeamForce* out = force_.data();
+  const Range mine = this_thread_range(active_.size());
+  each_response(
+      q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
+      [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
 }
 
 void Beams::gather(std::span<double> f, bool add) const {
@@ -151,16 +155,30 @@ double Beams::energy(std::span<const double> q) const {
   // thread count.
   const std::size_t count = active_.size();
   if (energy_.size() < count) energy_.resize(count);
+  reserve();
+  const std::int32_t* active = active_.data();
   double* energy = energy_.data();
-#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
-  for (std::size_t k = 0; k < count; ++k) energy[k] = response(static_cast<std::size_t>(active_[k]), q).energy;
+  as_team(count > kMinParallelItems, [&] {
+    const Range mine = this_thread_range(count);
+    each_response(
+        q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
+        [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
+  });
   double e = 0;
   for (std::size_t k = 0; k < count; ++k) e += energy[k];
   return e;
 }
 
 void Beams::strains(std::span<const double> q, std::span<double> out) const {
-  for (std::size_t b = 0; b < size(); ++b) out[b] = response(b, q).strain;
+  const std::size_t count = size();
+  if (far_.size() < count) far_.resize(count);
+  double* strain = out.data();
+  as_team(count > kMinParallelItems, [&] {
+    const Range mine = this_thread_range(count);
+    each_response(
+        q, mine.first, mine.last, [](std::size_t k) { return k; },
+        [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
+  });
 }
 
 void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken) {

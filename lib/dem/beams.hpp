@@ -59,6 +59,13 @@ class Beams {
   // add_forces (add) or set_forces.
   void forces(std::span<const double> q, std::span<double> f, bool add) const;
   BeamResponse response(std::size_t b, std::span<const double> q) const;
+  // use(k, b, r) with beam_response's values r of beam b = beam_of(k), for k in [first, last): first the
+  // branch-free formula of a beam near its reference orientation (no library call, no unpredictable branch;
+  // vectorised where the target has gathers), then the beams it does not cover (rotated by more than π/8: the
+  // spinning fragments of an explosion), one at a time. far_ must hold `last` entries. (beams.cpp only.)
+  template <class BeamOf, class Use>
+  void each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+                     Use&& use) const;
   std::size_t n_ = 0;  // cells
   std::vector<std::int32_t> i_, j_;
   std::vector<double> l0_, e0x_, e0y_;
@@ -83,7 +90,7 @@ class Beams {
   void unindex(std::size_t b);
   std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
-  mutable std::vector<std::uint8_t> far_;  // per active beam: beyond beam_response_near_reference
+  mutable std::vector<std::uint8_t> far_;  // per entry of each_response: beyond beam_response_near_reference
   mutable std::vector<double> energy_;     // per active beam: its elastic energy (energy(), in parallel)
   struct Verdict {
     int mode;       // breaking_mode's
