@@ -175,5 +175,9 @@ void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, 
                   std::span<const double> q, std::span<const double> v, Range contacts);
 double contact_power(const ContactList& c, ContactTerm term);
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
+// The same for the first `count` contacts of the list and the cells in `cells` only (a team's part: each
+// thread its cells, the same bits as the whole pass).
+void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
+                        std::span<double> f, Range cells);
 
 }  // namespace frac::dem

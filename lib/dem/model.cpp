@@ -106,7 +106,9 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       }
     }
 #pragma omp barrier
-#pragma omp single
+    // The list's size, diagnostics and powers by one thread (read after the team), while each thread adds the
+    // contacts' forces (summed over the terms) to its own cells, in contact order; no barrier after.
+#pragma omp single nowait
     {
       teams_ = nt;
       if (contact_list) {
@@ -115,8 +117,11 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
           if (term == Term::beams) continue;
           power_[static_cast<std::size_t>(term)] = contact_power(contacts_, contact_term_of(term));
         }
-        add_contact_forces(contacts_, bodies_.n, q, force_);  // the contact terms' forces, summed
       }
+    }
+    if (contact_list) {
+      const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
+      add_contact_forces(contacts_, count, bodies_.n, q, force_, this_thread_range(bodies_.n));
     }
     // The accelerations, and in the same pass whether every force is finite (Σ F·0 is 0 exactly then).
     double z = 0;
