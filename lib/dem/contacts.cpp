@@ -17,6 +17,7 @@ void ContactList::reserve(std::size_t count) {
   for (auto* a : {&i, &j}) a->resize(count);
   for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &fn}) a->resize(count);
   for (auto& a : term_power) a.resize(count);
+  for (auto& a : block_power) a.resize(count / kPowerBlock + 1);
   pair_force.resize(count);
 }
 
@@ -448,10 +449,36 @@ void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, 
   }
 }
 
-double contact_power(const ContactList& c, ContactTerm term) {
+namespace {
+// The power of a term over the contacts [first, last), in contact order.
+double power_sum(const ContactList& c, ContactTerm term, std::size_t first, std::size_t last) {
   const double* pw = c.term_power[static_cast<std::size_t>(term)].data();
   double power = 0;
-  for (std::size_t k = 0; k < c.size(); ++k) power += pw[k];
+  for (std::size_t k = first; k < last; ++k) power += pw[k];
+  return power;
+}
+}  // namespace
+
+double contact_power(const ContactList& c, ContactTerm term) {
+  const std::size_t count = c.size(), block = ContactList::kPowerBlock;
+  double power = 0;
+  for (std::size_t first = 0; first < count; first += block)
+    power += power_sum(c, term, first, std::min(first + block, count));
+  return power;
+}
+
+void contact_block_powers(ContactList& c, ContactTerm term, std::size_t count, Range mine) {
+  const std::size_t block = ContactList::kPowerBlock;
+  double* out = c.block_power[static_cast<std::size_t>(term)].data();
+  for (std::size_t b = (mine.first + block - 1) / block; b * block < mine.last; ++b)
+    out[b] = power_sum(c, term, b * block, std::min((b + 1) * block, count));
+}
+
+double contact_power_of_blocks(const ContactList& c, ContactTerm term, std::size_t count) {
+  const double* in = c.block_power[static_cast<std::size_t>(term)].data();
+  const std::size_t blocks = (count + ContactList::kPowerBlock - 1) / ContactList::kPowerBlock;
+  double power = 0;
+  for (std::size_t b = 0; b < blocks; ++b) power += in[b];
   return power;
 }
 

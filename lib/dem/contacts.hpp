@@ -52,6 +52,11 @@ struct ContactList {
   // each term adds its own), and the power of each term on each contact (summed by contact_power).
   std::vector<PairForce> pair_force;
   std::array<std::vector<double>, static_cast<std::size_t>(ContactTerm::count)> term_power;
+  // The power of each term summed over fixed blocks of kPowerBlock contacts, in contact order within a block
+  // (contact_block_powers; contact_power adds them up in block order): the same grouping whatever the
+  // thread count, so a team sums its own blocks without reading much of what the others wrote.
+  static constexpr std::size_t kPowerBlock = 256;
+  std::array<std::vector<double>, static_cast<std::size_t>(ContactTerm::count)> block_power;
   std::size_t size() const { return count_; }  // (set by ContactSearch::find_end)
   // Room for `count` contacts (never shrinks; the size is unchanged).
   void reserve(std::size_t count);
@@ -164,7 +169,7 @@ struct ContactParameters {
 // forces f (same layout), once for all the terms that ran. Each term runs on threads of its own (call it
 // outside a parallel region). contact_term, a team function (core/parallel.hpp), runs one on the contacts
 // [first, last) (a team's part; the terms of one contact in engine order on one thread, since damping adds
-// to fn and friction reads it), and contact_power sums a term's power over the list in contact order.
+// to fn and friction reads it), and contact_power sums a term's power over the list, block by block.
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
                        std::span<const double> v);
 double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
@@ -174,6 +179,11 @@ double contact_friction(ContactList& c, const ContactParameters& p, const Bodies
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts);
 double contact_power(const ContactList& c, ContactTerm term);
+// A team function: the block sums of a term's power for the blocks that start among the first `count`
+// contacts' range `mine` (a thread's part of the list; after a barrier behind every term). Then, after the
+// team, contact_power_of_blocks adds them up in block order: the same bits as contact_power.
+void contact_block_powers(ContactList& c, ContactTerm term, std::size_t count, Range mine);
+double contact_power_of_blocks(const ContactList& c, ContactTerm term, std::size_t count);
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
 // The same for the first `count` contacts of the list and the cells in `cells` only (a team's part: each
 // thread its cells, the same bits as the whole pass).

@@ -106,21 +106,19 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       }
     }
 #pragma omp barrier
-    // The list's size, diagnostics and powers by one thread (read after the team), while each thread adds the
-    // contacts' forces (summed over the terms) to its own cells, in contact order; no barrier after.
+    // The list's size and diagnostics by one thread (read after the team); each thread the power sums of the
+    // blocks of contacts that start in its part of the list (added up after the team) and the contacts'
+    // forces, summed over the terms, onto its own cells in contact order; no barrier after.
 #pragma omp single nowait
     {
       teams_ = nt;
-      if (contact_list) {
-        search_.find_end(contacts_);
-        for (const Term term : terms_) {
-          if (term == Term::beams) continue;
-          power_[static_cast<std::size_t>(term)] = contact_power(contacts_, contact_term_of(term));
-        }
-      }
+      if (contact_list) search_.find_end(contacts_);
     }
     if (contact_list) {
       const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
+      const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
+      for (const Term term : terms_)
+        if (term != Term::beams) contact_block_powers(contacts_, contact_term_of(term), count, mine);
       add_contact_forces(contacts_, count, bodies_.n, q, force_, this_thread_range(bodies_.n));
     }
     // The accelerations, and in the same pass whether every force is finite (Σ F·0 is 0 exactly then).
@@ -134,6 +132,11 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
     });
     zero_.mine() = z;
   });
+  if (contact_list) {
+    for (const Term term : terms_)
+      if (term != Term::beams)
+        power_[static_cast<std::size_t>(term)] = contact_power_of_blocks(contacts_, contact_term_of(term), contacts_.size());
+  }
   double zero = 0;
   for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
   // A non-finite force is traced to the first term that made it (the run stops at this step).
