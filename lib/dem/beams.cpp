@@ -151,21 +151,30 @@ void Beams::gather(std::span<double> f, bool add) const {
 }
 
 double Beams::energy(std::span<const double> q) const {
-  // Each beam's energy in parallel, in its own slot, then summed in beam order: the same bits whatever the
-  // thread count.
-  const std::size_t count = active_.size();
+  // Each beam's energy in parallel, in its own slot; then sums over fixed blocks of beams (each by the thread
+  // whose part the block starts in), added up in block order: the same bits whatever the thread count.
+  constexpr std::size_t kBlock = 256;
+  const std::size_t count = active_.size(), blocks = (count + kBlock - 1) / kBlock;
   if (energy_.size() < count) energy_.resize(count);
+  energy_blocks_.resize(blocks);
   reserve();
   const std::int32_t* active = active_.data();
   double* energy = energy_.data();
+  double* part = energy_blocks_.data();
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
     each_response(
         q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
         [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
+#pragma omp barrier
+    for (std::size_t b = (mine.first + kBlock - 1) / kBlock; b * kBlock < mine.last; ++b) {
+      double e = 0;
+      for (std::size_t k = b * kBlock; k < std::min(count, (b + 1) * kBlock); ++k) e += energy[k];
+      part[b] = e;
+    }
   });
   double e = 0;
-  for (std::size_t k = 0; k < count; ++k) e += energy[k];
+  for (std::size_t b = 0; b < blocks; ++b) e += part[b];
   return e;
 }
 

@@ -92,6 +92,7 @@ class Beams {
   std::vector<CellBeam> beams_of_;
   mutable std::vector<std::uint8_t> far_;  // per entry of each_response: beyond beam_response_near_reference
   mutable std::vector<double> energy_;     // per active beam: its elastic energy (energy(), in parallel)
+  mutable std::vector<double> energy_blocks_;  // energy()'s sums over fixed blocks of active beams
   struct Verdict {
     int mode;       // breaking_mode's
     double energy;  // elastic energy, J, when it breaks

@@ -91,6 +91,7 @@ class Model final : public dynamics::System {
   Physics physics_;
   Beams beams_;
   ContactSearch search_;
+  mutable std::vector<std::array<double, 2>> energy_blocks_;  // kinetic_energy's block sums
   ContactList contacts_;
   ContactParameters contact_parameters_;
   std::vector<Term> terms_;
