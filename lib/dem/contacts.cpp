@@ -32,6 +32,7 @@ ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
       world_(mesh.vertex.size()),
       cell_of_(bodies.n),
       sorted_(bodies.n),
+      grid_body_(bodies.n),
       skin_(0.2 * bodies.length_scale) {
   inv_diameter_.resize(bodies.n);
   for (std::size_t k = 0; k < bodies.n; ++k) inv_diameter_[k] = 1.0 / bodies.diameter[k];
@@ -126,6 +127,12 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
       }
       for (std::size_t c = gx * gy; c > 0; --c) start[c] = start[c - 1];
       start[0] = 0;
+      // The bodies' centres and radii in grid order: the scan below reads them one grid cell after another.
+      const double* r = bodies_->bound_radius.data();
+      for (std::size_t s = 0; s < n; ++s) {
+        const auto k = static_cast<std::size_t>(sorted_[s]);
+        grid_body_[s] = {x[k], y[k], r[k], sorted_[s]};
+      }
       grid_x_ = gx;
       grid_y_ = gy;
     }
@@ -136,22 +143,23 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
   auto& buf = thread_pairs_[t];
   buf.clear();
   const std::size_t gx = grid_x_, gy = grid_y_;
-  const auto& r = bodies_->bound_radius;
+  const GridBody* body = grid_body_.data();
   auto pairs_of = [&](std::size_t i) {
     const auto ci = static_cast<std::size_t>(cell_of_[i]);
+    const double xi = x[i], yi = y[i], ri = bodies_->bound_radius[i];
     const std::size_t cx = ci % gx, cy = ci / gx;
     for (std::size_t ny = (cy > 0 ? cy - 1 : 0); ny <= std::min(gy - 1, cy + 1); ++ny) {
       for (std::size_t nxc = (cx > 0 ? cx - 1 : 0); nxc <= std::min(gx - 1, cx + 1); ++nxc) {
         const std::size_t c = ny * gx + nxc;
         // A grid cell's bodies are in order of index: skip to the first j > i (one loop exit to predict per
         // grid cell, rather than a coin toss per body).
-        auto s = cell_start_[c];
-        const auto end = cell_start_[c + 1];
-        while (s < end && static_cast<std::size_t>(sorted_[static_cast<std::size_t>(s)]) <= i) ++s;
+        auto s = static_cast<std::size_t>(cell_start_[c]);
+        const auto end = static_cast<std::size_t>(cell_start_[c + 1]);
+        while (s < end && static_cast<std::size_t>(body[s].index) <= i) ++s;
         for (; s < end; ++s) {
-          const auto j = static_cast<std::size_t>(sorted_[static_cast<std::size_t>(s)]);
-          const double dx = x[j] - x[i], dy = y[j] - y[i];
-          const double reach = r[i] + r[j] + skin_;
+          const auto j = static_cast<std::size_t>(body[s].index);
+          const double dx = body[s].x - xi, dy = body[s].y - yi;
+          const double reach = ri + body[s].r + skin_;
           if (dx * dx + dy * dy >= reach * reach) continue;
           const auto* const begin = previous_.data() + previous_first_[i];
           const auto* const last = previous_.data() + previous_first_[i + 1];

@@ -114,6 +114,11 @@ class ContactSearch {
   std::vector<std::int32_t> cell_start_;  // counting sort of cells into grid cells
   std::vector<std::int32_t> cell_of_;
   std::vector<std::int32_t> sorted_;
+  struct GridBody {  // a body's centre and bounding radius, in grid order (sorted_)
+    double x, y, r;
+    std::int32_t index;
+  };
+  std::vector<GridBody> grid_body_;
   void rebuild(std::span<const double> q, ContactList& out);  // a team function, barriers at its ends
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when two cells'
