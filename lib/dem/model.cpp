@@ -133,9 +133,11 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
     zero_.mine() = z;
   });
   if (contact_list) {
-    for (const Term term : terms_)
-      if (term != Term::beams)
-        power_[static_cast<std::size_t>(term)] = contact_power_of_blocks(contacts_, contact_term_of(term), contacts_.size());
+    for (const Term term : terms_) {
+      if (term == Term::beams) continue;
+      power_[static_cast<std::size_t>(term)] =
+          contact_power_of_blocks(contacts_, contact_term_of(term), contacts_.size());
+    }
   }
   double zero = 0;
   for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
