@@ -469,7 +469,7 @@ double power_sum(const ContactList& c, ContactTerm term, std::size_t first, std:
 
 double contact_power(const ContactList& c, ContactTerm term) {
   const std::size_t count = c.size(), block = ContactList::kPowerBlock;
-  double power = 0;
+  double power = 0;  // (grouped as contact_block_powers and contact_power_of_blocks group it)
   for (std::size_t first = 0; first < count; first += block)
     power += power_sum(c, term, first, std::min(first + block, count));
   return power;
@@ -482,9 +482,9 @@ void contact_block_powers(ContactList& c, ContactTerm term, std::size_t count, R
     out[b] = power_sum(c, term, b * block, std::min((b + 1) * block, count));
 }
 
-double contact_power_of_blocks(const ContactList& c, ContactTerm term, std::size_t count) {
+double contact_power_of_blocks(const ContactList& c, ContactTerm term) {
   const double* in = c.block_power[static_cast<std::size_t>(term)].data();
-  const std::size_t blocks = (count + ContactList::kPowerBlock - 1) / ContactList::kPowerBlock;
+  const std::size_t blocks = (c.size() + ContactList::kPowerBlock - 1) / ContactList::kPowerBlock;
   double power = 0;
   for (std::size_t b = 0; b < blocks; ++b) power += in[b];
   return power;

@@ -184,11 +184,11 @@ double contact_friction(ContactList& c, const ContactParameters& p, const Bodies
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts);
 double contact_power(const ContactList& c, ContactTerm term);
-// A team function: the block sums of a term's power for the blocks that start among the first `count`
-// contacts' range `mine` (a thread's part of the list; after a barrier behind every term). Then, after the
-// team, contact_power_of_blocks adds them up in block order: the same bits as contact_power.
+// A team function, after a barrier behind every term: the sums of a term's power over the blocks of the list
+// (its first `count` contacts) that start in `mine`, this thread's part of it. After the team,
+// contact_power_of_blocks adds them up in block order: the same bits as contact_power.
 void contact_block_powers(ContactList& c, ContactTerm term, std::size_t count, Range mine);
-double contact_power_of_blocks(const ContactList& c, ContactTerm term, std::size_t count);
+double contact_power_of_blocks(const ContactList& c, ContactTerm term);
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
 // The same for the first `count` contacts of the list and the cells in `cells` only (a team's part: each
 // thread its cells, the same bits as the whole pass).

@@ -135,8 +135,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   if (contact_list) {
     for (const Term term : terms_) {
       if (term == Term::beams) continue;
-      power_[static_cast<std::size_t>(term)] =
-          contact_power_of_blocks(contacts_, contact_term_of(term), contacts_.size());
+      power_[static_cast<std::size_t>(term)] = contact_power_of_blocks(contacts_, contact_term_of(term));
     }
   }
   double zero = 0;
