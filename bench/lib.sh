@@ -38,28 +38,39 @@ median_wall() {
 }
 
 # step_ns UNITS STEPS COMMAND...: one measurement of the cost of a step, set-up and output excluded: runs
-# COMMAND --stop.max_steps STEPS and then 2×STEPS, back to back, and prints "CPU WALL", the differences
-# of their CPU and wall times in nanoseconds per unit (cell, node) per step.
+# COMMAND --stop.max_steps STEPS and then 2×STEPS, back to back, and prints "CPU WALL SHORT LONG": the
+# differences of their CPU and wall times in nanoseconds per unit (cell, node) per step, and the two wall
+# times in seconds.
 step_ns() {
   local units=$1 steps=$2 w1 c1 w2 c2
   shift 2
   read -r w1 c1 <<<"$(time_once "$@" --stop.max_steps "$steps")"
   read -r w2 c2 <<<"$(time_once "$@" --stop.max_steps "$((2 * steps))")"
   awk -v u="$units" -v s="$steps" -v w1="$w1" -v c1="$c1" -v w2="$w2" -v c2="$c2" \
-    'BEGIN { printf "%.0f %.0f\n", (c2 - c1) / (u * s) * 1e9, (w2 - w1) / (u * s) * 1e9 }'
+    'BEGIN { printf "%.0f %.0f %s %s\n", (c2 - c1) / (u * s) * 1e9, (w2 - w1) / (u * s) * 1e9, w1, w2 }'
+}
+
+# fastest_ns UNITS STEPS NAME: the wall ns per unit per step of the least disturbed runs of a configuration
+# measured by measure_configs: its fastest 2×STEPS run minus its fastest STEPS run. (The smallest of the
+# per-repeat differences would not do: a repeat whose short run was slowed gives a difference near zero.)
+fastest_ns() {
+  # shellcheck disable=SC2086
+  awk -v u="$1" -v s="$2" -v a="$(printf '%s\n' ${short_wall[$3]} | sort -g | head -1)" \
+    -v b="$(printf '%s\n' ${long_wall[$3]} | sort -g | head -1)" 'BEGIN { printf "%.0f", (b - a) / (u * s) * 1e9 }'
 }
 
 # measure_configs UNITS STEPS NAME...: the cost of a step of each configuration NAME, whose command line
 # (without --stop.max_steps) the caller's function `command_for NAME` prints. A configuration that fails
 # on a 1-step probe is not measured: its first error line goes to failed[NAME]. The others are measured
 # by step_ns, $repeats times, all configurations once per repeat (interleaved, so that a change of load
-# hits them all alike); cpu[NAME] and wall[NAME] get the per-repeat values, space-separated.
-declare -gA failed=() cpu=() wall=()
+# hits them all alike); cpu[NAME] and wall[NAME] get the per-repeat values, space-separated, and
+# short_wall[NAME] and long_wall[NAME] the wall times of the runs (for fastest_ns).
+declare -gA failed=() cpu=() wall=() short_wall=() long_wall=()
 measure_configs() {
-  local units=$1 steps=$2 name m c w r
+  local units=$1 steps=$2 name m c w w1 w2 r
   shift 2
   for name in "$@"; do
-    cpu[$name]="" wall[$name]=""
+    cpu[$name]="" wall[$name]="" short_wall[$name]="" long_wall[$name]=""
     # shellcheck disable=SC2046
     if ! $(command_for "$name") --stop.max_steps 1 >/dev/null 2>"$out/probe.$$.txt"; then
       failed[$name]=$(grep -m1 . "$out/probe.$$.txt" | sed 's/|/\\|/g')
@@ -71,8 +82,8 @@ measure_configs() {
       [[ -n ${failed[$name]:-} ]] && continue
       # shellcheck disable=SC2046
       m=$(step_ns "$units" "$steps" $(command_for "$name"))
-      read -r c w <<<"$m"
-      cpu[$name]+=" $c" wall[$name]+=" $w"
+      read -r c w w1 w2 <<<"$m"
+      cpu[$name]+=" $c" wall[$name]+=" $w" short_wall[$name]+=" $w1" long_wall[$name]+=" $w2"
     done
   done
 }
