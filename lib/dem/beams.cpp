@@ -167,15 +167,9 @@ double Beams::energy(std::span<const double> q) const {
         q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
         [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
 #pragma omp barrier
-    for (std::size_t b = (mine.first + kBlock - 1) / kBlock; b * kBlock < mine.last; ++b) {
-      double e = 0;
-      for (std::size_t k = b * kBlock; k < std::min(count, (b + 1) * kBlock); ++k) e += energy[k];
-      part[b] = e;
-    }
+    block_sums(energy, count, kBlock, mine, part);
   });
-  double e = 0;
-  for (std::size_t b = 0; b < blocks; ++b) e += part[b];
-  return e;
+  return sum_of_blocks(part, count, kBlock);
 }
 
 void Beams::strains(std::span<const double> q, std::span<double> out) const {

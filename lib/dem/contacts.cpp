@@ -457,37 +457,21 @@ void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, 
   }
 }
 
-namespace {
-// The power of a term over the contacts [first, last), in contact order.
-double power_sum(const ContactList& c, ContactTerm term, std::size_t first, std::size_t last) {
-  const double* pw = c.term_power[static_cast<std::size_t>(term)].data();
-  double power = 0;
-  for (std::size_t k = first; k < last; ++k) power += pw[k];
-  return power;
-}
-}  // namespace
-
 double contact_power(const ContactList& c, ContactTerm term) {
+  // (Grouped as contact_block_powers and contact_power_of_blocks group it: block_sums, core/parallel.hpp.)
   const std::size_t count = c.size(), block = ContactList::kPowerBlock;
-  double power = 0;  // (grouped as contact_block_powers and contact_power_of_blocks group it)
-  for (std::size_t first = 0; first < count; first += block)
-    power += power_sum(c, term, first, std::min(first + block, count));
-  return power;
+  std::vector<double> sums(count / block + 1);
+  block_sums(c.term_power[static_cast<std::size_t>(term)].data(), count, block, Range{0, count}, sums.data());
+  return sum_of_blocks(sums.data(), count, block);
 }
 
 void contact_block_powers(ContactList& c, ContactTerm term, std::size_t count, Range mine) {
-  const std::size_t block = ContactList::kPowerBlock;
-  double* out = c.block_power[static_cast<std::size_t>(term)].data();
-  for (std::size_t b = (mine.first + block - 1) / block; b * block < mine.last; ++b)
-    out[b] = power_sum(c, term, b * block, std::min((b + 1) * block, count));
+  const auto k = static_cast<std::size_t>(term);
+  block_sums(c.term_power[k].data(), count, ContactList::kPowerBlock, mine, c.block_power[k].data());
 }
 
 double contact_power_of_blocks(const ContactList& c, ContactTerm term) {
-  const double* in = c.block_power[static_cast<std::size_t>(term)].data();
-  const std::size_t blocks = (c.size() + ContactList::kPowerBlock - 1) / ContactList::kPowerBlock;
-  double power = 0;
-  for (std::size_t b = 0; b < blocks; ++b) power += in[b];
-  return power;
+  return sum_of_blocks(c.block_power[static_cast<std::size_t>(term)].data(), c.size(), ContactList::kPowerBlock);
 }
 
 double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
