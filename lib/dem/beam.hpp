@@ -3,6 +3,7 @@
 // Timoshenko stiffnesses α, β, δ from the initial geometry, evaluated in the co-rotational frame of
 // the current beam axis, so that a rigid motion of a bonded pair makes no force; and the breaking
 // rule of §5. One beam at a time here; beams.hpp runs the loops.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -112,21 +113,28 @@ inline int breaking_mode(double strain, double theta_i, double theta_j, double t
   return s >= b ? 1 : 2;
 }
 
-// breaking_mode of the beam in state (dx, dy, φ_i, φ_j), without sqrt, atan2 or wrap where the answer is
-// certain: a beam that is not stretched holds, and one whose strain and end rotations are bounded well
-// inside the rule holds. The bounds: ε = (l − l0)/l0 ≤ (l² − l0²)/(2 l0²) for l ≥ l0; |Θ| = |wrap(φ − Δψ)|
-// ≤ |φ| + |Δψ| and |Δψ| ≤ |tan Δψ| = |e0 × d|/(e0 · d) while the axis has turned by less than π/2. The
-// 1e-9 margins dwarf the round-off of the exact evaluation. Every other beam gets the exact rule on
-// beam_response's values, so the verdict (and the mode) is the same. `energy` receives the elastic
-// energy of a beam that breaks.
-inline int breaking_mode(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
-                         const BeamStiffness& k, double t_eps, double t_theta, double& energy) {
+// True when the beam in state (dx, dy, φ_i, φ_j) certainly holds under the breaking rule, decided without sqrt,
+// atan2 or wrap, and without a branch (a vector loop runs it): a beam that is not stretched holds, and one whose
+// strain and end rotations are bounded well inside the rule holds. The bounds: ε = (l − l0)/l0 ≤ (l² − l0²)/(2
+// l0²) for l ≥ l0; |Θ| = |wrap(φ − Δψ)| ≤ |φ| + |Δψ| and |Δψ| ≤ |tan Δψ| = |e0 × d|/(e0 · d) while the axis has
+// turned by less than π/2. The 1e-9 margins dwarf the round-off of the exact evaluation. False: the exact rule
+// decides.
+inline bool breaking_bound_holds(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
+                                 double t_eps, double t_theta) {
   const double l2 = dx * dx + dy * dy, l02 = l0 * l0;
-  if (l2 < l02 * (1 - 1e-12)) return 0;  // shorter than l0: holds
-  const double strain_bound = std::max(0.0, 0.5 * (l2 - l02) / l02) * (1 + 1e-9);
+  // (Not clamped at 0: squared, a negative bound only adds to a, and a select here would keep the loop scalar.)
+  const double strain_bound = 0.5 * (l2 - l02) / l02 * (1 + 1e-9);
   const double s = e0x * dy - e0y * dx, c = e0x * dx + e0y * dy;  // |d| sin Δψ, |d| cos Δψ
   const double a = (strain_bound / t_eps) * (strain_bound / t_eps) + std::max(std::abs(phi_i), std::abs(phi_j)) / t_theta;
-  if (c > 0 && a * c + std::abs(s) / t_theta < (1 - 1e-9) * c) return 0;
+  return (l2 < l02 * (1 - 1e-12)) | ((c > 0) & (a * c + std::abs(s) / t_theta < (1 - 1e-9) * c));
+}
+
+// breaking_mode of the beam in state (dx, dy, φ_i, φ_j): 0 where breaking_bound_holds, else the exact rule on
+// beam_response's values (the same verdict and mode as the exact rule everywhere). `energy` receives the
+// elastic energy of a beam that breaks.
+inline int breaking_mode(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
+                         const BeamStiffness& k, double t_eps, double t_theta, double& energy) {
+  if (breaking_bound_holds(dx, dy, e0x, e0y, phi_i, phi_j, l0, t_eps, t_theta)) return 0;
   const BeamResponse r = beam_response(dx, dy, e0x, e0y, phi_i, phi_j, l0, k);
   energy = r.energy;
   return breaking_mode(r.strain, r.theta_i, r.theta_j, t_eps, t_theta);

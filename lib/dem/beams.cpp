@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/parallel.hpp"
+#include "core/vector_kernel.hpp"
 
 namespace frac::dem {
 
@@ -73,7 +74,6 @@ void Beams::add_forces(std::span<const double> q, std::span<double> f) const { f
 void Beams::set_forces(std::span<const double> q, std::span<double> f) const { forces(q, f, false); }
 
 void Beams::forces(std::span<const double> q, std::span<double> f, bool add) const {
-  reserve();
   as_team(active_.size() > kMinParallelItems || n_ > kMinParallelItems, [&] {
     beam_pass(q);
 #pragma omp barrier
@@ -81,36 +81,108 @@ void Beams::forces(std::span<const double> q, std::span<double> f, bool add) con
   });
 }
 
-void Beams::reserve() const {
-  if (far_.size() < active_.size()) far_.resize(active_.size());
+namespace {
+// One block of beams for each_response: their inputs gathered into arrays, so that the branch-free formula
+// runs as a vector loop with no indirect load, and its outputs (a block fits in the first-level cache).
+constexpr std::size_t kResponseBlock = 128;
+struct ResponseBlock {
+  alignas(64) double dx[kResponseBlock], dy[kResponseBlock], phi_i[kResponseBlock], phi_j[kResponseBlock];
+  alignas(64) double e0x[kResponseBlock], e0y[kResponseBlock], l0[kResponseBlock];
+  alignas(64) double alpha[kResponseBlock], beta[kResponseBlock], delta[kResponseBlock];
+  alignas(64) double fx[kResponseBlock], fy[kResponseBlock], torque_i[kResponseBlock], torque_j[kResponseBlock];
+  alignas(64) double energy[kResponseBlock], strain[kResponseBlock];
+  alignas(64) double near[kResponseBlock];  // 1: the formula applies (a double: a vector loop stores it as such)
+};
+
+// beam_response_near_reference over the first `count` beams of the block, storing only part P (what is not
+// stored, the compiler leaves out: the strain's division, the energy's products).
+template <BeamResponsePart P>
+FRACTURE_VECTOR_KERNEL void respond_near_reference(ResponseBlock& blk, std::size_t count) {
+#pragma omp simd
+  for (std::size_t k = 0; k < count; ++k) {
+    BeamResponse r;
+    const bool near = beam_response_near_reference(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k],
+                                                   blk.phi_j[k], blk.l0[k], {blk.alpha[k], blk.beta[k], blk.delta[k]}, r);
+    if constexpr (P == BeamResponsePart::forces) {
+      blk.fx[k] = r.fx;
+      blk.fy[k] = r.fy;
+      blk.torque_i[k] = r.torque_i;
+      blk.torque_j[k] = r.torque_j;
+    } else if constexpr (P == BeamResponsePart::energy) {
+      blk.energy[k] = r.energy;
+    } else {
+      blk.strain[k] = r.strain;
+    }
+    blk.near[k] = near ? 1.0 : 0.0;
+  }
 }
 
-template <class BeamOf, class Use>
-void Beams::each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
-                          Use&& use) const {
+// breaking_bound_holds over the first `count` beams of the block, into `near` (1: the beam holds for sure).
+FRACTURE_VECTOR_KERNEL void bound_breaking(ResponseBlock& blk, std::size_t count, double t_eps, double t_theta) {
+#pragma omp simd
+  for (std::size_t k = 0; k < count; ++k) {
+    const bool holds = breaking_bound_holds(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
+                                            blk.l0[k], t_eps, t_theta);
+    blk.near[k] = holds ? 1.0 : 0.0;
+  }
+}
+}  // namespace
+
+template <class BeamOf, class OnBlock>
+void Beams::each_block(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+                       OnBlock&& on_block) const {
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
   const std::int32_t *cell_i = i_.data(), *cell_j = j_.data();
   const double *e0x = e0x_.data(), *e0y = e0y_.data(), *l0 = l0_.data();
   const BeamStiffness* stiffness = k_.data();
-  std::uint8_t* far = far_.data();
-#pragma omp simd
-  for (std::size_t k = first; k < last; ++k) {
-    const std::size_t b = beam_of(k);
-    const auto i = static_cast<std::size_t>(cell_i[b]), j = static_cast<std::size_t>(cell_j[b]);
-    BeamResponse r;
-    const bool near = beam_response_near_reference(x[j] - x[i], y[j] - y[i], e0x[b], e0y[b], phi[i], phi[j], l0[b],
-                                                   stiffness[b], r);
-    use(k, b, r);
-    far[k] = !near;
-  }
-  for (std::size_t k = first; k < last; ++k) {
-    if (far[k]) {
-      const std::size_t b = beam_of(k);
-      use(k, b, response(b, q));
+  ResponseBlock blk;
+  for (std::size_t start = first; start < last; start += kResponseBlock) {
+    const std::size_t count = std::min(kResponseBlock, last - start);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t b = beam_of(start + k);
+      const auto i = static_cast<std::size_t>(cell_i[b]), j = static_cast<std::size_t>(cell_j[b]);
+      blk.dx[k] = x[j] - x[i];
+      blk.dy[k] = y[j] - y[i];
+      blk.phi_i[k] = phi[i];
+      blk.phi_j[k] = phi[j];
+      blk.e0x[k] = e0x[b];
+      blk.e0y[k] = e0y[b];
+      blk.l0[k] = l0[b];
+      blk.alpha[k] = stiffness[b].alpha;
+      blk.beta[k] = stiffness[b].beta;
+      blk.delta[k] = stiffness[b].delta;
     }
+    on_block(start, count, blk);
   }
+}
+
+template <BeamResponsePart P, class BeamOf, class Use>
+void Beams::each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+                          Use&& use) const {
+  each_block(q, first, last, beam_of, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
+    respond_near_reference<P>(blk, count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t b = beam_of(start + k);
+      if (blk.near[k] != 0.0) {
+        BeamResponse r{};
+        if constexpr (P == BeamResponsePart::forces) {
+          r.fx = blk.fx[k];
+          r.fy = blk.fy[k];
+          r.torque_i = blk.torque_i[k];
+          r.torque_j = blk.torque_j[k];
+        } else if constexpr (P == BeamResponsePart::energy) {
+          r.energy = blk.energy[k];
+        } else {
+          r.strain = blk.strain[k];
+        }
+        use(start + k, b, r);
+      } else {
+        use(start + k, b, response(b, q));
+      }
+    }
+  });
 }
 
 void Beams::beam_pass(std::span<const double> q) const {
@@ -119,7 +191,7 @@ void Beams::beam_pass(std::span<const double> q) const {
   const std::int32_t* active = active_.data();
   BeamForce* out = force_.data();
   const Range mine = this_thread_range(active_.size());
-  each_response(
+  each_response<BeamResponsePart::forces>(
       q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
       [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
 }
@@ -157,13 +229,12 @@ double Beams::energy(std::span<const double> q) const {
   const std::size_t count = active_.size(), blocks = (count + kBlock - 1) / kBlock;
   if (energy_.size() < count) energy_.resize(count);
   energy_blocks_.resize(blocks);
-  reserve();
   const std::int32_t* active = active_.data();
   double* energy = energy_.data();
   double* part = energy_blocks_.data();
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
-    each_response(
+    each_response<BeamResponsePart::energy>(
         q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
         [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
 #pragma omp barrier
@@ -174,34 +245,46 @@ double Beams::energy(std::span<const double> q) const {
 
 void Beams::strains(std::span<const double> q, std::span<double> out) const {
   const std::size_t count = size();
-  if (far_.size() < count) far_.resize(count);
   double* strain = out.data();
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
-    each_response(
+    each_response<BeamResponsePart::strain>(
         q, mine.first, mine.last, [](std::size_t k) { return k; },
         [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
   });
 }
 
 void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken) {
-  const double* x = q.data();
-  const double* y = x + n_;
-  const double* phi = y + n_;
   const std::size_t count = active_.size();
   if (verdict_.size() < count) verdict_.resize(count);
-  // The verdicts in parallel (each beam its own slot), then the active list compacted in order: the same
-  // bits whatever the thread count.
+  // The verdicts in parallel (each beam its own slot; in blocks, the bound that clears most beams as a vector
+  // loop, then the exact rule for the others), then the active list compacted in order: the same bits whatever
+  // the thread count.
   Verdict* verdict = verdict_.data();
+  const std::int32_t* active = active_.data();
   bool any = false;
-#pragma omp parallel for schedule(static) if (count > kMinParallelItems) reduction(|| : any)
-  for (std::size_t k = 0; k < count; ++k) {
-    const auto b = static_cast<std::size_t>(active_[k]);
-    const auto i = static_cast<std::size_t>(i_[b]), j = static_cast<std::size_t>(j_[b]);
-    verdict[k].mode = breaking_mode(x[j] - x[i], y[j] - y[i], e0x_[b], e0y_[b], phi[i], phi[j], l0_[b], k_[b], t_eps,
-                                    t_theta, verdict[k].energy);
-    any = any || verdict[k].mode != 0;
-  }
+  as_team(count > kMinParallelItems, [&] {
+    const Range mine = this_thread_range(count);
+    bool mine_any = false;
+    each_block(
+        q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
+        [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
+          bound_breaking(blk, n, t_eps, t_theta);
+          for (std::size_t k = 0; k < n; ++k) {
+            Verdict& v = verdict[start + k];
+            v.mode = 0;
+            if (blk.near[k] != 0.0) continue;
+            const auto b = static_cast<std::size_t>(active[start + k]);
+            v.mode = breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
+                                   blk.l0[k], k_[b], t_eps, t_theta, v.energy);
+            mine_any = mine_any || v.mode != 0;
+          }
+        });
+    if (mine_any) {
+#pragma omp atomic write
+      any = true;
+    }
+  });
   if (!any) return;  // most steps: nothing broke, the list stays as it is
   std::size_t kept = 0;
   for (std::size_t k = 0; k < count; ++k) {

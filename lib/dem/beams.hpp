@@ -17,6 +17,9 @@ struct BeamBreak {
   double energy;   // elastic energy it held, J
 };
 
+// The part of a beam's response a loop over the beams reads (Beams' loops compute only that).
+enum class BeamResponsePart { forces, energy, strain };
+
 class Beams {
  public:
   Beams() = default;
@@ -38,10 +41,9 @@ class Beams {
   // run on threads of their own: call them outside a parallel region.
   void set_forces(std::span<const double> q, std::span<double> f) const;
   // The same in parts, team functions (core/parallel.hpp) for a caller that runs other work on the team in
-  // between: before the team, reserve; beam_pass, each beam's force at q (this thread's part of the beams);
+  // between: beam_pass, each beam's force at q (this thread's part of the beams);
   // after a barrier, gather, each of this thread's cells its beams' forces, onto f (add) or into it. No barrier
   // at their ends.
-  void reserve() const;
   void beam_pass(std::span<const double> q) const;
   void gather(std::span<double> f, bool add) const;
   // Elastic energy of the intact beams at q, J.
@@ -59,13 +61,20 @@ class Beams {
   // add_forces (add) or set_forces.
   void forces(std::span<const double> q, std::span<double> f, bool add) const;
   BeamResponse response(std::size_t b, std::span<const double> q) const;
-  // use(k, b, r) with beam_response's values r of beam b = beam_of(k), for k in [first, last): first the
-  // branch-free formula of a beam near its reference orientation (no library call, no unpredictable branch;
-  // vectorised where the target has gathers), then the beams it does not cover (rotated by more than π/8: the
-  // spinning fragments of an explosion), one at a time. far_ must hold `last` entries. (beams.cpp only.)
-  template <class BeamOf, class Use>
+  // use(k, b, r) with beam_response's values r of beam b = beam_of(k), for k in [first, last), in order, where r
+  // holds part P (the other fields are zero): in blocks, the beams' inputs gathered into arrays, then the
+  // branch-free formula of a beam near its reference orientation as a vector loop over them (no library call,
+  // no branch, no indirect load), then beam_response, one at a time, for the beams it does not cover (rotated
+  // by more than π/8: the spinning fragments of an explosion). (beams.cpp only.)
+  template <BeamResponsePart P, class BeamOf, class Use>
   void each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
                      Use&& use) const;
+  // on_block(start, count, block) for blocks of the beams b = beam_of(k), k in [first, last), in order: their
+  // inputs at q gathered into the block's arrays (beams.cpp's ResponseBlock), entries [0, count) for k = start +
+  // entry.
+  template <class BeamOf, class OnBlock>
+  void each_block(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+                  OnBlock&& on_block) const;
   std::size_t n_ = 0;  // cells
   std::vector<std::int32_t> i_, j_;
   std::vector<double> l0_, e0x_, e0y_;
@@ -90,7 +99,6 @@ class Beams {
   void unindex(std::size_t b);
   std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
-  mutable std::vector<std::uint8_t> far_;  // per entry of each_response: beyond beam_response_near_reference
   mutable std::vector<double> energy_;     // per active beam: its elastic energy (energy(), in parallel)
   mutable std::vector<double> energy_blocks_;  // energy()'s sums over fixed blocks of active beams
   struct Verdict {

@@ -74,7 +74,6 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   const bool contact_list = physics_.contacts;
   const auto most = static_cast<std::size_t>(max_threads());
   if (contact_list) search_.reserve_threads(most, contacts_);
-  if (beams_on) beams_.reserve();
   zero_.reserve(most);
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();

@@ -909,4 +909,55 @@ TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
   }
 }
 
+// The breaking pass over many beams (several of its blocks, some beams already broken, 1 and 2 threads) breaks
+// exactly the beams the exact rule breaks, in beam order, with the exact rule's mode and energy: its vector
+// bound only spares the exact evaluation where the verdict is certain.
+TEST(DemModel, BreakingPassGivesTheExactRuleOfEveryBeam) {
+  const CellMesh mesh = rect_mesh(20, 14, 6);
+  const Material mat;
+  const std::size_t n = mesh.cells();
+  frac::Rng rng(21);
+  std::vector<double> q(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    // Strains of neighbours up to ~±5 % (t_ε = 3 %), end rotations up to ~±0.1 rad (t_Θ = 0.07), a few far.
+    q[k] = mesh.centroid[k].x() + 0.02 * kG * rng.uniform(-1, 1);
+    q[n + k] = mesh.centroid[k].y() + 0.02 * kG * rng.uniform(-1, 1);
+    q[2 * n + k] = k % 11 == 0 ? rng.uniform(-3, 3) : rng.uniform(-0.05, 0.05);
+  }
+  const int before = frac::max_threads();
+  for (const int threads : {1, 2}) {
+    frac::set_threads(threads);
+    frac::dem::Beams beams(mesh, mat);
+    for (std::size_t b = 3; b < beams.size(); b += 9) beams.remove(b);
+    std::vector<frac::dem::BeamBreak> expected;
+    for (std::size_t b = 0; b < beams.size(); ++b) {
+      if (!beams.intact()[b]) continue;
+      const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
+      const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
+      const double l0 = d0.norm();
+      const auto r = frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0,
+                                              q[2 * n + i], q[2 * n + j], l0, beams.stiffness(b));
+      const int mode = frac::dem::breaking_mode(r.strain, r.theta_i, r.theta_j, mat.t_eps, mat.t_theta);
+      if (mode != 0) expected.push_back({static_cast<std::int64_t>(b), mode, r.energy});
+    }
+    ASSERT_GT(beams.intact_count(), 3 * 128u);
+    ASSERT_GT(expected.size(), 50u);
+    ASSERT_LT(expected.size(), beams.intact_count() / 2);
+    const std::size_t intact = beams.intact_count();
+    std::vector<frac::dem::BeamBreak> broken;
+    beams.break_beams(q, mat.t_eps, mat.t_theta, broken);
+    ASSERT_EQ(broken.size(), expected.size()) << threads << " threads";
+    for (std::size_t k = 0; k < broken.size(); ++k) {
+      EXPECT_EQ(broken[k].beam, expected[k].beam);
+      EXPECT_EQ(broken[k].mode, expected[k].mode);
+      EXPECT_EQ(broken[k].energy, expected[k].energy);
+    }
+    EXPECT_EQ(beams.intact_count(), intact - expected.size());
+    // The same state again: nothing more breaks.
+    beams.break_beams(q, mat.t_eps, mat.t_theta, broken);
+    EXPECT_EQ(broken.size(), expected.size());
+  }
+  frac::set_threads(before);
+}
+
 }  // namespace
