@@ -236,7 +236,8 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
   const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), bodies_->length_scale, hint);
   pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
   if (pair.overlapping) {
-    geometry_[p] = geo;
+    geometry_[p] = {geo.point.x(), geo.point.y(), geo.normal.x(), geo.normal.y(), geo.area,
+                    geo.kind == geometry::ContactGeometry::Kind::enclosed, geo.distinct_crossings > 2};
     pair_state_[p] = PairState::overlapping;
   }
   return true;
@@ -255,16 +256,16 @@ void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& 
     const auto& pair = neighbours_[p];
     out.i[k] = pair.i;
     out.j[k] = pair.j;
-    out.rx[k] = geo.point.x();
-    out.ry[k] = geo.point.y();
-    out.nx[k] = geo.normal.x();
-    out.ny[k] = geo.normal.y();
+    out.rx[k] = geo.rx;
+    out.ry[k] = geo.ry;
+    out.nx[k] = geo.nx;
+    out.ny[k] = geo.ny;
     out.area[k] = geo.area;
     out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
     out.fn[k] = 0.0;
     out.pair_force[k] = {0.0, 0.0};
-    enclosed += geo.kind == geometry::ContactGeometry::Kind::enclosed;
-    multi_crossing += geo.distinct_crossings > 2;
+    enclosed += geo.enclosed;
+    multi_crossing += geo.multi_crossing;
     ++k;
   }
   block.enclosed = enclosed;

@@ -161,7 +161,11 @@ class ContactSearch {
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)
-  std::vector<geometry::ContactGeometry> geometry_;  // one slot per neighbour pair, set where overlapping
+  struct PairContact {  // what the list keeps of an overlapping pair's geometry (a third of ContactGeometry)
+    double rx, ry, nx, ny, area;
+    bool enclosed, multi_crossing;  // kind enclosed; more than two distinct crossings
+  };
+  std::vector<PairContact> geometry_;  // one slot per neighbour pair, set where overlapping
 };
 
 struct ContactParameters {
