@@ -2,6 +2,8 @@
 
 #include <omp.h>
 
+#include "core/float_mode.hpp"
+
 namespace frac {
 
 int max_threads() { return omp_get_max_threads(); }
@@ -30,6 +32,11 @@ void HomeFirstSchedule::reset(std::size_t items, std::size_t nt) {
   }
 }
 
-void set_threads(int requested) { omp_set_num_threads(requested > 0 ? requested : omp_get_num_procs()); }
+void set_threads(int requested) {
+  omp_set_num_threads(requested > 0 ? requested : omp_get_num_procs());
+  // Every thread of the pool (the caller among them) in the simulation's floating-point mode.
+#pragma omp parallel
+  flush_subnormals_to_zero();
+}
 
 }  // namespace frac

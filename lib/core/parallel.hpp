@@ -21,7 +21,8 @@ int thread_count();  // threads of the enclosing parallel region
 int thread_index();  // this thread's number in it
 bool in_parallel();  // inside an active parallel region (one with more than one thread)
 
-// Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0.
+// Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0; and puts each of them,
+// and the caller, in the simulation's floating-point mode (core/float_mode.hpp: subnormals flushed to zero).
 void set_threads(int requested);
 
 // Thread t's part [first, last) of `items` under a static schedule of nt threads, as OpenMP's

@@ -2,17 +2,46 @@
 // uses it (core/finite.hpp).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "core/finite.hpp"
+#include "core/float_mode.hpp"
 #include "core/parallel.hpp"
 
 namespace {
 
 // static_range deals out what OpenMP's schedule(static) deals out: the per-cell force loops and the
 // per-coordinate loops must give a thread the same cells.
+// After set_threads, every thread of the pool flushes subnormal results and operands to zero (the simulation's
+// floating-point mode, core/float_mode.hpp), and normal numbers are untouched.
+TEST(Parallel, ThreadsFlushSubnormalsToZero) {
+  const int before = frac::max_threads();
+  for (const int threads : {1, 2, 3}) {
+    frac::set_threads(threads);
+    std::vector<double> product(static_cast<std::size_t>(threads), -1), sum(product), normal(product);
+    volatile double tiny = 1e-300, scale = 1e-10, subnormal = 4.9e-324, one = 1.0;  // (not folded at compile time)
+#pragma omp parallel
+    {
+      const auto t = static_cast<std::size_t>(frac::thread_index());
+      product[t] = tiny * scale;       // 1e-310: a subnormal result
+      sum[t] = subnormal + subnormal;  // subnormal operands
+      normal[t] = tiny * one;
+    }
+    if (!frac::flush_subnormals_to_zero()) GTEST_SKIP() << "no flush-to-zero mode on this target";
+    // (Compared as bit patterns: in this mode a comparison reads a subnormal operand as zero.)
+    for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(product[t]), 0u) << threads << " threads, thread " << t;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(sum[t]), 0u) << threads << " threads, thread " << t;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(normal[t]), std::bit_cast<std::uint64_t>(1e-300)) << t;
+    }
+  }
+  frac::set_threads(before);
+}
+
 TEST(Parallel, StaticRangeMatchesOpenMPStaticSchedule) {
   for (const int threads : {1, 2, 3, 4}) {
     for (const std::size_t items : {0u, 1u, 2u, 5u, 7u, 1100u, 1103u}) {
