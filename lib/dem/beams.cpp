@@ -7,51 +7,67 @@
 
 namespace frac::dem {
 
+void Beams::BeamTable::resize(std::size_t n) {
+  for (auto* v : {&beam, &i, &j}) v->resize(n);
+  for (auto* v : {&e0x, &e0y, &l0, &alpha, &beta, &delta}) v->resize(n);
+}
+
+void Beams::BeamTable::copy_entry(std::size_t to, std::size_t from) {
+  for (auto* v : {&beam, &i, &j}) (*v)[to] = (*v)[from];
+  for (auto* v : {&e0x, &e0y, &l0, &alpha, &beta, &delta}) (*v)[to] = (*v)[from];
+}
+
+void Beams::BeamTable::erase(std::size_t k) {
+  for (std::size_t e = k; e + 1 < size(); ++e) copy_entry(e, e + 1);
+  resize(size() - 1);
+}
+
 Beams::Beams(const mesh::CellMesh& mesh, const Material& m) : n_(mesh.cells()) {
   const std::size_t nb = mesh.beams();
-  i_.resize(nb);
-  j_.resize(nb);
-  l0_.resize(nb);
-  e0x_.resize(nb);
-  e0y_.resize(nb);
+  all_.resize(nb);
   k_.resize(nb);
   intact_.assign(nb, 1);
-  active_.resize(nb);
   for (std::size_t b = 0; b < nb; ++b) {
-    i_[b] = static_cast<std::int32_t>(mesh.beam[b][0]);
-    j_[b] = static_cast<std::int32_t>(mesh.beam[b][1]);
-    const auto d = mesh.centroid[static_cast<std::size_t>(j_[b])] - mesh.centroid[static_cast<std::size_t>(i_[b])];
+    all_.beam[b] = static_cast<std::int32_t>(b);
+    all_.i[b] = static_cast<std::int32_t>(mesh.beam[b][0]);
+    all_.j[b] = static_cast<std::int32_t>(mesh.beam[b][1]);
+    const auto d = mesh.centroid[static_cast<std::size_t>(all_.j[b])] - mesh.centroid[static_cast<std::size_t>(all_.i[b])];
     // l0 from the centroids (the initial, force-free state), not from the stored length, so that the
     // reference state is exactly unstressed.
-    l0_[b] = d.norm();
-    e0x_[b] = d.x() / l0_[b];
-    e0y_[b] = d.y() / l0_[b];
-    k_[b] = beam_stiffness(l0_[b], mesh.beam_section[b], m.thickness, m.beam_modulus, m.shear_ratio);
-    active_[b] = static_cast<std::int32_t>(b);
+    const double l0 = d.norm();
+    all_.l0[b] = l0;
+    all_.e0x[b] = d.x() / l0;
+    all_.e0y[b] = d.y() / l0;
+    k_[b] = beam_stiffness(l0, mesh.beam_section[b], m.thickness, m.beam_modulus, m.shear_ratio);
+    all_.alpha[b] = k_[b].alpha;
+    all_.beta[b] = k_[b].beta;
+    all_.delta[b] = k_[b].delta;
   }
+  active_ = all_;
   index_cells();
   force_.resize(nb);
 }
 
 void Beams::index_cells() {
   cell_start_.assign(n_ + 1, 0);
-  for (const std::int32_t b : active_) {
-    ++cell_start_[static_cast<std::size_t>(i_[static_cast<std::size_t>(b)]) + 1];
-    ++cell_start_[static_cast<std::size_t>(j_[static_cast<std::size_t>(b)]) + 1];
+  for (std::size_t k = 0; k < active_.size(); ++k) {
+    ++cell_start_[static_cast<std::size_t>(active_.i[k]) + 1];
+    ++cell_start_[static_cast<std::size_t>(active_.j[k]) + 1];
   }
   for (std::size_t c = 0; c < n_; ++c) cell_start_[c + 1] += cell_start_[c];
   beams_of_.resize(2 * active_.size());
   cell_count_.assign(n_, 0);
-  for (const std::int32_t b : active_) {
-    const auto i = static_cast<std::size_t>(i_[static_cast<std::size_t>(b)]);
-    const auto j = static_cast<std::size_t>(j_[static_cast<std::size_t>(b)]);
+  for (std::size_t k = 0; k < active_.size(); ++k) {
+    const std::int32_t b = active_.beam[k];
+    const auto i = static_cast<std::size_t>(active_.i[k]);
+    const auto j = static_cast<std::size_t>(active_.j[k]);
     beams_of_[static_cast<std::size_t>(cell_start_[i] + cell_count_[i]++)] = {b, 0, 1.0};
     beams_of_[static_cast<std::size_t>(cell_start_[j] + cell_count_[j]++)] = {b, 1, -1.0};
   }
 }
 
 void Beams::unindex(std::size_t b) {
-  for (const std::int32_t c : {i_[b], j_[b]}) {
+  for (const std::int32_t c : {all_.i[b], all_.j[b]}) {
     CellBeam* first = beams_of_.data() + cell_start_[static_cast<std::size_t>(c)];
     CellBeam* last = first + cell_count_[static_cast<std::size_t>(c)];
     CellBeam* hit = std::find_if(first, last, [b](const CellBeam& e) { return e.beam == static_cast<std::int32_t>(b); });
@@ -62,11 +78,11 @@ void Beams::unindex(std::size_t b) {
 }
 
 BeamResponse Beams::response(std::size_t b, std::span<const double> q) const {
-  const auto i = static_cast<std::size_t>(i_[b]), j = static_cast<std::size_t>(j_[b]);
+  const auto i = static_cast<std::size_t>(all_.i[b]), j = static_cast<std::size_t>(all_.j[b]);
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  return beam_response(x[j] - x[i], y[j] - y[i], e0x_[b], e0y_[b], phi[i], phi[j], l0_[b], k_[b]);
+  return beam_response(x[j] - x[i], y[j] - y[i], all_.e0x[b], all_.e0y[b], phi[i], phi[j], all_.l0[b], k_[b]);
 }
 
 void Beams::add_forces(std::span<const double> q, std::span<double> f) const { forces(q, f, true); }
@@ -82,89 +98,102 @@ void Beams::forces(std::span<const double> q, std::span<double> f, bool add) con
 }
 
 namespace {
-// One block of beams for each_response: their inputs gathered into arrays, so that the branch-free formula
-// runs as a vector loop with no indirect load, and its outputs (a block fits in the first-level cache).
+// One block of beams for each_response: their states gathered into arrays, so that the branch-free formula runs
+// as a vector loop with no indirect load (the constants are read in sequence from the beam table), and its
+// outputs (a block fits in the first-level cache).
 constexpr std::size_t kResponseBlock = 128;
 struct ResponseBlock {
   alignas(64) double dx[kResponseBlock], dy[kResponseBlock], phi_i[kResponseBlock], phi_j[kResponseBlock];
-  alignas(64) double e0x[kResponseBlock], e0y[kResponseBlock], l0[kResponseBlock];
-  alignas(64) double alpha[kResponseBlock], beta[kResponseBlock], delta[kResponseBlock];
+  const double *e0x, *e0y, *l0, *alpha, *beta, *delta;  // the block's entries of the table
   alignas(64) double fx[kResponseBlock], fy[kResponseBlock], torque_i[kResponseBlock], torque_j[kResponseBlock];
   alignas(64) double energy[kResponseBlock], strain[kResponseBlock];
   alignas(64) double near[kResponseBlock];  // 1: the formula applies (a double: a vector loop stores it as such)
 };
 
-// beam_response_near_reference over the first `count` beams of the block, storing only part P (what is not
-// stored, the compiler leaves out: the strain's division, the energy's products).
+// beam_response_near_reference over the first `count` beams of a block, storing only part P (what is not
+// stored, the compiler leaves out: the strain's division, the energy's products) into `out`, and whether the
+// formula applies into `near`.
 template <BeamResponsePart P>
-FRACTURE_VECTOR_KERNEL void respond_near_reference(ResponseBlock& blk, std::size_t count) {
+FRACTURE_VECTOR_KERNEL void respond_near_reference(
+    std::size_t count, const double* __restrict dx, const double* __restrict dy, const double* __restrict phi_i,
+    const double* __restrict phi_j, const double* __restrict e0x, const double* __restrict e0y,
+    const double* __restrict l0, const double* __restrict alpha, const double* __restrict beta,
+    const double* __restrict delta, double* __restrict out0, double* __restrict out1, double* __restrict out2,
+    double* __restrict out3, double* __restrict near) {
 #pragma omp simd
   for (std::size_t k = 0; k < count; ++k) {
     BeamResponse r;
-    const bool near = beam_response_near_reference(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k],
-                                                   blk.phi_j[k], blk.l0[k], {blk.alpha[k], blk.beta[k], blk.delta[k]}, r);
+    const bool applies = beam_response_near_reference(dx[k], dy[k], e0x[k], e0y[k], phi_i[k], phi_j[k], l0[k],
+                                                      {alpha[k], beta[k], delta[k]}, r);
     if constexpr (P == BeamResponsePart::forces) {
-      blk.fx[k] = r.fx;
-      blk.fy[k] = r.fy;
-      blk.torque_i[k] = r.torque_i;
-      blk.torque_j[k] = r.torque_j;
+      out0[k] = r.fx;
+      out1[k] = r.fy;
+      out2[k] = r.torque_i;
+      out3[k] = r.torque_j;
     } else if constexpr (P == BeamResponsePart::energy) {
-      blk.energy[k] = r.energy;
+      out0[k] = r.energy;
     } else {
-      blk.strain[k] = r.strain;
+      out0[k] = r.strain;
     }
-    blk.near[k] = near ? 1.0 : 0.0;
+    near[k] = applies ? 1.0 : 0.0;
   }
 }
 
-// breaking_bound_holds over the first `count` beams of the block, into `near` (1: the beam holds for sure).
-FRACTURE_VECTOR_KERNEL void bound_breaking(ResponseBlock& blk, std::size_t count, double t_eps, double t_theta) {
+template <BeamResponsePart P>
+void respond_near_reference(ResponseBlock& blk, std::size_t count) {
+  double* out0 = P == BeamResponsePart::forces ? blk.fx : P == BeamResponsePart::energy ? blk.energy : blk.strain;
+  respond_near_reference<P>(count, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, blk.alpha,
+                            blk.beta, blk.delta, out0, blk.fy, blk.torque_i, blk.torque_j, blk.near);
+}
+
+// breaking_bound_holds over the first `count` beams of a block, into `holds` (1: the beam holds for sure).
+FRACTURE_VECTOR_KERNEL void bound_breaking(std::size_t count, const double* __restrict dx, const double* __restrict dy,
+                                           const double* __restrict phi_i, const double* __restrict phi_j,
+                                           const double* __restrict e0x, const double* __restrict e0y,
+                                           const double* __restrict l0, double t_eps, double t_theta,
+                                           double* __restrict holds) {
 #pragma omp simd
   for (std::size_t k = 0; k < count; ++k) {
-    const bool holds = breaking_bound_holds(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
-                                            blk.l0[k], t_eps, t_theta);
-    blk.near[k] = holds ? 1.0 : 0.0;
+    const bool sure = breaking_bound_holds(dx[k], dy[k], e0x[k], e0y[k], phi_i[k], phi_j[k], l0[k], t_eps, t_theta);
+    holds[k] = sure ? 1.0 : 0.0;
   }
 }
 }  // namespace
 
-template <class BeamOf, class OnBlock>
-void Beams::each_block(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+template <class OnBlock>
+void Beams::each_block(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                        OnBlock&& on_block) const {
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  const std::int32_t *cell_i = i_.data(), *cell_j = j_.data();
-  const double *e0x = e0x_.data(), *e0y = e0y_.data(), *l0 = l0_.data();
-  const BeamStiffness* stiffness = k_.data();
+  const std::int32_t *cell_i = t.i.data(), *cell_j = t.j.data();
   ResponseBlock blk;
   for (std::size_t start = first; start < last; start += kResponseBlock) {
     const std::size_t count = std::min(kResponseBlock, last - start);
     for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t b = beam_of(start + k);
-      const auto i = static_cast<std::size_t>(cell_i[b]), j = static_cast<std::size_t>(cell_j[b]);
+      const auto i = static_cast<std::size_t>(cell_i[start + k]), j = static_cast<std::size_t>(cell_j[start + k]);
       blk.dx[k] = x[j] - x[i];
       blk.dy[k] = y[j] - y[i];
       blk.phi_i[k] = phi[i];
       blk.phi_j[k] = phi[j];
-      blk.e0x[k] = e0x[b];
-      blk.e0y[k] = e0y[b];
-      blk.l0[k] = l0[b];
-      blk.alpha[k] = stiffness[b].alpha;
-      blk.beta[k] = stiffness[b].beta;
-      blk.delta[k] = stiffness[b].delta;
     }
+    blk.e0x = t.e0x.data() + start;
+    blk.e0y = t.e0y.data() + start;
+    blk.l0 = t.l0.data() + start;
+    blk.alpha = t.alpha.data() + start;
+    blk.beta = t.beta.data() + start;
+    blk.delta = t.delta.data() + start;
     on_block(start, count, blk);
   }
 }
 
-template <BeamResponsePart P, class BeamOf, class Use>
-void Beams::each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+template <BeamResponsePart P, class Use>
+void Beams::each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                           Use&& use) const {
-  each_block(q, first, last, beam_of, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
+  each_block(q, t, first, last, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
     respond_near_reference<P>(blk, count);
     for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t b = beam_of(start + k);
+      const auto b = static_cast<std::size_t>(t.beam[start + k]);
       if (blk.near[k] != 0.0) {
         BeamResponse r{};
         if constexpr (P == BeamResponsePart::forces) {
@@ -188,12 +217,10 @@ void Beams::each_response(std::span<const double> q, std::size_t first, std::siz
 void Beams::beam_pass(std::span<const double> q) const {
   // Forces in parallel (each beam its own slot); each cell then gathers its intact beams in beam order (gather):
   // the same bits whatever the thread count.
-  const std::int32_t* active = active_.data();
   BeamForce* out = force_.data();
   const Range mine = this_thread_range(active_.size());
   each_response<BeamResponsePart::forces>(
-      q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
-      [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
+      q, active_, mine.first, mine.last, [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
 }
 
 void Beams::gather(std::span<double> f, bool add) const {
@@ -229,14 +256,12 @@ double Beams::energy(std::span<const double> q) const {
   const std::size_t count = active_.size(), blocks = (count + kBlock - 1) / kBlock;
   if (energy_.size() < count) energy_.resize(count);
   energy_blocks_.resize(blocks);
-  const std::int32_t* active = active_.data();
   double* energy = energy_.data();
   double* part = energy_blocks_.data();
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
     each_response<BeamResponsePart::energy>(
-        q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
-        [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
+        q, active_, mine.first, mine.last, [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
 #pragma omp barrier
     block_sums(energy, count, kBlock, mine, part);
   });
@@ -249,8 +274,7 @@ void Beams::strains(std::span<const double> q, std::span<double> out) const {
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
     each_response<BeamResponsePart::strain>(
-        q, mine.first, mine.last, [](std::size_t k) { return k; },
-        [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
+        q, all_, mine.first, mine.last, [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
   });
 }
 
@@ -261,20 +285,17 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
   // loop, then the exact rule for the others), then the active list compacted in order: the same bits whatever
   // the thread count.
   Verdict* verdict = verdict_.data();
-  const std::int32_t* active = active_.data();
   bool any = false;
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
     bool mine_any = false;
-    each_block(
-        q, mine.first, mine.last, [&](std::size_t k) { return static_cast<std::size_t>(active[k]); },
-        [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
-          bound_breaking(blk, n, t_eps, t_theta);
+    each_block(q, active_, mine.first, mine.last, [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
+          bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
           for (std::size_t k = 0; k < n; ++k) {
             Verdict& v = verdict[start + k];
             v.mode = 0;
             if (blk.near[k] != 0.0) continue;
-            const auto b = static_cast<std::size_t>(active[start + k]);
+            const auto b = static_cast<std::size_t>(active_.beam[start + k]);
             v.mode = breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
                                    blk.l0[k], k_[b], t_eps, t_theta, v.energy);
             mine_any = mine_any || v.mode != 0;
@@ -288,9 +309,9 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
   if (!any) return;  // most steps: nothing broke, the list stays as it is
   std::size_t kept = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const auto b = static_cast<std::size_t>(active_[k]);
+    const auto b = static_cast<std::size_t>(active_.beam[k]);
     if (verdict[k].mode == 0) {
-      active_[kept++] = active_[k];
+      active_.copy_entry(kept++, k);
     } else {
       intact_[b] = 0;
       unindex(b);
@@ -303,13 +324,14 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
 void Beams::remove(std::size_t b) {
   if (!intact_[b]) return;
   intact_[b] = 0;
-  active_.erase(std::find(active_.begin(), active_.end(), static_cast<std::int32_t>(b)));
+  active_.erase(static_cast<std::size_t>(
+      std::find(active_.beam.begin(), active_.beam.end(), static_cast<std::int32_t>(b)) - active_.beam.begin()));
   unindex(b);
 }
 
 void Beams::remove_all() {
   std::fill(intact_.begin(), intact_.end(), std::uint8_t{0});
-  active_.clear();
+  active_.resize(0);
   index_cells();
 }
 

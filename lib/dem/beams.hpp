@@ -25,14 +25,14 @@ class Beams {
   Beams() = default;
   Beams(const mesh::CellMesh& mesh, const Material& material);
 
-  std::size_t size() const { return i_.size(); }
+  std::size_t size() const { return all_.size(); }
   std::size_t intact_count() const { return active_.size(); }
   std::span<const std::uint8_t> intact() const { return intact_; }
-  std::span<const std::int32_t> active() const { return active_; }
-  std::int32_t cell_i(std::size_t b) const { return i_[b]; }
-  std::int32_t cell_j(std::size_t b) const { return j_[b]; }
+  std::span<const std::int32_t> active() const { return active_.beam; }
+  std::int32_t cell_i(std::size_t b) const { return all_.i[b]; }
+  std::int32_t cell_j(std::size_t b) const { return all_.j[b]; }
   const BeamStiffness& stiffness(std::size_t b) const { return k_[b]; }
-  double rest_length(std::size_t b) const { return l0_[b]; }
+  double rest_length(std::size_t b) const { return all_.l0[b]; }
 
   // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque). (Their power
   // is not bookkept as work: the beam law derives from an energy, which the ledger holds.)
@@ -61,26 +61,34 @@ class Beams {
   // add_forces (add) or set_forces.
   void forces(std::span<const double> q, std::span<double> f, bool add) const;
   BeamResponse response(std::size_t b, std::span<const double> q) const;
-  // use(k, b, r) with beam_response's values r of beam b = beam_of(k), for k in [first, last), in order, where r
-  // holds part P (the other fields are zero): in blocks, the beams' inputs gathered into arrays, then the
+  // Per-beam data in arrays, entry k for beam beam[k]: every beam in beam order (all_), or the intact ones in the
+  // order of the active list (active_), so that a loop over either reads its beams' constants in sequence.
+  struct BeamTable {
+    std::vector<std::int32_t> beam, i, j;
+    std::vector<double> e0x, e0y, l0, alpha, beta, delta;
+    std::size_t size() const { return beam.size(); }
+    void resize(std::size_t n);
+    void copy_entry(std::size_t to, std::size_t from);  // entry `to` := entry `from`
+    void erase(std::size_t k);                          // the entries after k move up by one
+  };
+  // use(k, b, r) with beam_response's values r of beam b = t.beam[k], for k in [first, last), in order, where r
+  // holds part P (the other fields are zero): in blocks, the beams' states gathered into arrays, then the
   // branch-free formula of a beam near its reference orientation as a vector loop over them (no library call,
   // no branch, no indirect load), then beam_response, one at a time, for the beams it does not cover (rotated
   // by more than π/8: the spinning fragments of an explosion). (beams.cpp only.)
-  template <BeamResponsePart P, class BeamOf, class Use>
-  void each_response(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+  template <BeamResponsePart P, class Use>
+  void each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                      Use&& use) const;
-  // on_block(start, count, block) for blocks of the beams b = beam_of(k), k in [first, last), in order: their
-  // inputs at q gathered into the block's arrays (beams.cpp's ResponseBlock), entries [0, count) for k = start +
-  // entry.
-  template <class BeamOf, class OnBlock>
-  void each_block(std::span<const double> q, std::size_t first, std::size_t last, BeamOf&& beam_of,
+  // on_block(start, count, block) for blocks of the entries [first, last) of t, in order: the states at q of
+  // entries start .. start + count − 1 gathered into the block's arrays, its constants pointing into t
+  // (beams.cpp's ResponseBlock).
+  template <class OnBlock>
+  void each_block(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                   OnBlock&& on_block) const;
   std::size_t n_ = 0;  // cells
-  std::vector<std::int32_t> i_, j_;
-  std::vector<double> l0_, e0x_, e0y_;
-  std::vector<BeamStiffness> k_;
+  BeamTable all_, active_;
+  std::vector<BeamStiffness> k_;  // per beam
   std::vector<std::uint8_t> intact_;
-  std::vector<std::int32_t> active_;
   struct BeamForce {
     double fx, fy;
     double torque[2];  // on cell i, on cell j
