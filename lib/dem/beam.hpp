@@ -125,7 +125,8 @@ inline bool breaking_bound_holds(double dx, double dy, double e0x, double e0y, d
   // (Not clamped at 0: squared, a negative bound only adds to a, and a select here would keep the loop scalar.)
   const double strain_bound = 0.5 * (l2 - l02) / l02 * (1 + 1e-9);
   const double s = e0x * dy - e0y * dx, c = e0x * dx + e0y * dy;  // |d| sin Δψ, |d| cos Δψ
-  const double a = (strain_bound / t_eps) * (strain_bound / t_eps) + std::max(std::abs(phi_i), std::abs(phi_j)) / t_theta;
+  const double a =
+      (strain_bound / t_eps) * (strain_bound / t_eps) + std::max(std::abs(phi_i), std::abs(phi_j)) / t_theta;
   return (l2 < l02 * (1 - 1e-12)) | ((c > 0) & (a * c + std::abs(s) / t_theta < (1 - 1e-9) * c));
 }
 

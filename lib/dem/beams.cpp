@@ -31,7 +31,8 @@ Beams::Beams(const mesh::CellMesh& mesh, const Material& m) : n_(mesh.cells()) {
     all_.beam[b] = static_cast<std::int32_t>(b);
     all_.i[b] = static_cast<std::int32_t>(mesh.beam[b][0]);
     all_.j[b] = static_cast<std::int32_t>(mesh.beam[b][1]);
-    const auto d = mesh.centroid[static_cast<std::size_t>(all_.j[b])] - mesh.centroid[static_cast<std::size_t>(all_.i[b])];
+    const auto i = static_cast<std::size_t>(all_.i[b]), j = static_cast<std::size_t>(all_.j[b]);
+    const auto d = mesh.centroid[j] - mesh.centroid[i];
     // l0 from the centroids (the initial, force-free state), not from the stored length, so that the
     // reference state is exactly unstressed.
     const double l0 = d.norm();
@@ -220,7 +221,8 @@ void Beams::beam_pass(std::span<const double> q) const {
   BeamForce* out = force_.data();
   const Range mine = this_thread_range(active_.size());
   each_response<BeamResponsePart::forces>(
-      q, active_, mine.first, mine.last, [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
+      q, active_, mine.first, mine.last,
+      [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
 }
 
 void Beams::gather(std::span<double> f, bool add) const {
@@ -261,7 +263,8 @@ double Beams::energy(std::span<const double> q) const {
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
     each_response<BeamResponsePart::energy>(
-        q, active_, mine.first, mine.last, [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
+        q, active_, mine.first, mine.last,
+        [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
 #pragma omp barrier
     block_sums(energy, count, kBlock, mine, part);
   });
@@ -274,7 +277,8 @@ void Beams::strains(std::span<const double> q, std::span<double> out) const {
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
     each_response<BeamResponsePart::strain>(
-        q, all_, mine.first, mine.last, [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
+        q, all_, mine.first, mine.last,
+        [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
   });
 }
 
@@ -290,17 +294,17 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
     const Range mine = this_thread_range(count);
     bool mine_any = false;
     each_block(q, active_, mine.first, mine.last, [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
-          bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
-          for (std::size_t k = 0; k < n; ++k) {
-            Verdict& v = verdict[start + k];
-            v.mode = 0;
-            if (blk.near[k] != 0.0) continue;
-            const auto b = static_cast<std::size_t>(active_.beam[start + k]);
-            v.mode = breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
-                                   blk.l0[k], k_[b], t_eps, t_theta, v.energy);
-            mine_any = mine_any || v.mode != 0;
-          }
-        });
+      bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
+      for (std::size_t k = 0; k < n; ++k) {
+        Verdict& v = verdict[start + k];
+        v.mode = 0;
+        if (blk.near[k] != 0.0) continue;  // holds for sure
+        const auto b = static_cast<std::size_t>(active_.beam[start + k]);
+        v.mode = breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k], blk.l0[k],
+                               k_[b], t_eps, t_theta, v.energy);
+        mine_any = mine_any || v.mode != 0;
+      }
+    });
     if (mine_any) {
 #pragma omp atomic write
       any = true;

@@ -161,7 +161,7 @@ class ContactSearch {
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)
-  struct PairContact {  // what the list keeps of an overlapping pair's geometry (a third of ContactGeometry)
+  struct PairContact {  // what the list keeps of an overlapping pair's geometry (48 bytes; ContactGeometry has 96)
     double rx, ry, nx, ny, area;
     bool enclosed, multi_crossing;  // kind enclosed; more than two distinct crossings
   };
