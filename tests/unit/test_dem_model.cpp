@@ -873,19 +873,38 @@ TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
   frac::set_threads(before);
 }
 
+// The mesh's reference state with each centroid moved by up to `shift` in x and y and each cell turned by up to
+// `turn`, every `far_every`-th cell by up to 3 rad instead (past the beam loops' branch-free formula).
+std::vector<double> jittered_state(const CellMesh& mesh, std::uint64_t seed, double shift, double turn,
+                                   std::size_t far_every) {
+  const std::size_t n = mesh.cells();
+  frac::Rng rng(seed);
+  std::vector<double> q(3 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    q[k] = mesh.centroid[k].x() + shift * rng.uniform(-1, 1);
+    q[n + k] = mesh.centroid[k].y() + shift * rng.uniform(-1, 1);
+    q[2 * n + k] = k % far_every == 0 ? rng.uniform(-3, 3) : rng.uniform(-turn, turn);
+  }
+  return q;
+}
+
+// beam_response of beam b at state q, from the mesh's own geometry (not the Beams' copy of it).
+frac::dem::BeamResponse exact_response(const CellMesh& mesh, const frac::dem::Beams& beams, std::span<const double> q,
+                                       std::size_t b) {
+  const std::size_t n = mesh.cells();
+  const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
+  const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
+  const double l0 = d0.norm();
+  return frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0, q[2 * n + i],
+                                  q[2 * n + j], l0, beams.stiffness(b));
+}
+
 TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
   const CellMesh mesh = rect_mesh(14, 10, 5);
   Material mat;
   frac::dem::Beams beams(mesh, mat);
   const std::size_t n = mesh.cells();
-  frac::Rng rng(9);
-  std::vector<double> q(3 * n);
-  for (std::size_t k = 0; k < n; ++k) {
-    q[k] = mesh.centroid[k].x() + 0.01 * kG * rng.uniform(-1, 1);
-    q[n + k] = mesh.centroid[k].y() + 0.01 * kG * rng.uniform(-1, 1);
-    // Some cells turned far (past the branch-free formula's range), most a little.
-    q[2 * n + k] = k % 7 == 0 ? rng.uniform(-3, 3) : rng.uniform(-0.02, 0.02);
-  }
+  const std::vector<double> q = jittered_state(mesh, 9, 0.01 * kG, 0.02, 7);
   for (int round = 0; round < 3; ++round) {
     if (round > 0)
       for (std::size_t b = static_cast<std::size_t>(round); b < beams.size(); b += 5) beams.remove(b);
@@ -894,10 +913,7 @@ TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
     for (std::size_t b = 0; b < beams.size(); ++b) {
       if (!beams.intact()[b]) continue;
       const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
-      const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
-      const double l0 = d0.norm();
-      const auto r = frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0, q[2 * n + i],
-                                              q[2 * n + j], l0, beams.stiffness(b));
+      const auto r = exact_response(mesh, beams, q, b);
       expected[i] += r.fx;
       expected[n + i] += r.fy;
       expected[j] -= r.fx;
@@ -915,15 +931,8 @@ TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
 TEST(DemModel, BreakingPassGivesTheExactRuleOfEveryBeam) {
   const CellMesh mesh = rect_mesh(20, 14, 6);
   const Material mat;
-  const std::size_t n = mesh.cells();
-  frac::Rng rng(21);
-  std::vector<double> q(3 * n);
-  for (std::size_t k = 0; k < n; ++k) {
-    // Strains of neighbours up to ~±5 % (t_ε = 3 %), end rotations up to ~±0.1 rad (t_Θ = 0.07), a few far.
-    q[k] = mesh.centroid[k].x() + 0.02 * kG * rng.uniform(-1, 1);
-    q[n + k] = mesh.centroid[k].y() + 0.02 * kG * rng.uniform(-1, 1);
-    q[2 * n + k] = k % 11 == 0 ? rng.uniform(-3, 3) : rng.uniform(-0.05, 0.05);
-  }
+  // Strains of neighbours up to ~±5 % (t_ε = 3 %), end rotations up to ~±0.1 rad (t_Θ = 0.07), a few far.
+  const std::vector<double> q = jittered_state(mesh, 21, 0.02 * kG, 0.05, 11);
   const int before = frac::max_threads();
   for (const int threads : {1, 2}) {
     frac::set_threads(threads);
@@ -932,11 +941,7 @@ TEST(DemModel, BreakingPassGivesTheExactRuleOfEveryBeam) {
     std::vector<frac::dem::BeamBreak> expected;
     for (std::size_t b = 0; b < beams.size(); ++b) {
       if (!beams.intact()[b]) continue;
-      const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
-      const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
-      const double l0 = d0.norm();
-      const auto r = frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0,
-                                              q[2 * n + i], q[2 * n + j], l0, beams.stiffness(b));
+      const auto r = exact_response(mesh, beams, q, b);
       const int mode = frac::dem::breaking_mode(r.strain, r.theta_i, r.theta_j, mat.t_eps, mat.t_theta);
       if (mode != 0) expected.push_back({static_cast<std::int64_t>(b), mode, r.energy});
     }
