@@ -25,7 +25,6 @@ void Beams::BeamTable::erase(std::size_t k) {
 Beams::Beams(const mesh::CellMesh& mesh, const Material& m) : n_(mesh.cells()) {
   const std::size_t nb = mesh.beams();
   all_.resize(nb);
-  k_.resize(nb);
   intact_.assign(nb, 1);
   for (std::size_t b = 0; b < nb; ++b) {
     all_.beam[b] = static_cast<std::int32_t>(b);
@@ -39,10 +38,10 @@ Beams::Beams(const mesh::CellMesh& mesh, const Material& m) : n_(mesh.cells()) {
     all_.l0[b] = l0;
     all_.e0x[b] = d.x() / l0;
     all_.e0y[b] = d.y() / l0;
-    k_[b] = beam_stiffness(l0, mesh.beam_section[b], m.thickness, m.beam_modulus, m.shear_ratio);
-    all_.alpha[b] = k_[b].alpha;
-    all_.beta[b] = k_[b].beta;
-    all_.delta[b] = k_[b].delta;
+    const BeamStiffness k = beam_stiffness(l0, mesh.beam_section[b], m.thickness, m.beam_modulus, m.shear_ratio);
+    all_.alpha[b] = k.alpha;
+    all_.beta[b] = k.beta;
+    all_.delta[b] = k.delta;
   }
   active_ = all_;
   index_cells();
@@ -83,7 +82,8 @@ BeamResponse Beams::response(std::size_t b, std::span<const double> q) const {
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  return beam_response(x[j] - x[i], y[j] - y[i], all_.e0x[b], all_.e0y[b], phi[i], phi[j], all_.l0[b], k_[b]);
+  return beam_response(x[j] - x[i], y[j] - y[i], all_.e0x[b], all_.e0y[b], phi[i], phi[j], all_.l0[b],
+                       stiffness(b));
 }
 
 void Beams::add_forces(std::span<const double> q, std::span<double> f) const { forces(q, f, true); }
@@ -301,7 +301,7 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
         if (blk.near[k] != 0.0) continue;  // holds for sure
         const auto b = static_cast<std::size_t>(active_.beam[start + k]);
         v.mode = breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k], blk.l0[k],
-                               k_[b], t_eps, t_theta, v.energy);
+                               stiffness(b), t_eps, t_theta, v.energy);
         mine_any = mine_any || v.mode != 0;
       }
     });

@@ -31,7 +31,7 @@ class Beams {
   std::span<const std::int32_t> active() const { return active_.beam; }
   std::int32_t cell_i(std::size_t b) const { return all_.i[b]; }
   std::int32_t cell_j(std::size_t b) const { return all_.j[b]; }
-  const BeamStiffness& stiffness(std::size_t b) const { return k_[b]; }
+  BeamStiffness stiffness(std::size_t b) const { return {all_.alpha[b], all_.beta[b], all_.delta[b]}; }
   double rest_length(std::size_t b) const { return all_.l0[b]; }
 
   // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque). (Their power
@@ -87,7 +87,6 @@ class Beams {
                   OnBlock&& on_block) const;
   std::size_t n_ = 0;  // cells
   BeamTable all_, active_;
-  std::vector<BeamStiffness> k_;  // per beam
   std::vector<std::uint8_t> intact_;
   struct BeamForce {
     double fx, fy;
