@@ -130,15 +130,22 @@ inline bool breaking_bound_holds(double dx, double dy, double e0x, double e0y, d
   return (l2 < l02 * (1 - 1e-12)) | ((c > 0) & (a * c + std::abs(s) / t_theta < (1 - 1e-9) * c));
 }
 
-// breaking_mode of the beam in state (dx, dy, φ_i, φ_j): 0 where breaking_bound_holds, else the exact rule on
-// beam_response's values (the same verdict and mode as the exact rule everywhere). `energy` receives the
-// elastic energy of a beam that breaks.
-inline int breaking_mode(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
-                         const BeamStiffness& k, double t_eps, double t_theta, double& energy) {
-  if (breaking_bound_holds(dx, dy, e0x, e0y, phi_i, phi_j, l0, t_eps, t_theta)) return 0;
+// The exact rule on beam_response's values of the beam in state (dx, dy, φ_i, φ_j); `energy` receives its
+// elastic energy.
+inline int exact_breaking_mode(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
+                               const BeamStiffness& k, double t_eps, double t_theta, double& energy) {
   const BeamResponse r = beam_response(dx, dy, e0x, e0y, phi_i, phi_j, l0, k);
   energy = r.energy;
   return breaking_mode(r.strain, r.theta_i, r.theta_j, t_eps, t_theta);
+}
+
+// breaking_mode of the beam in state (dx, dy, φ_i, φ_j): 0 where breaking_bound_holds, else exact_breaking_mode
+// (the same verdict and mode as the exact rule everywhere). `energy` receives the elastic energy of a beam
+// that breaks.
+inline int breaking_mode(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
+                         const BeamStiffness& k, double t_eps, double t_theta, double& energy) {
+  if (breaking_bound_holds(dx, dy, e0x, e0y, phi_i, phi_j, l0, t_eps, t_theta)) return 0;
+  return exact_breaking_mode(dx, dy, e0x, e0y, phi_i, phi_j, l0, k, t_eps, t_theta, energy);
 }
 
 }  // namespace frac::dem

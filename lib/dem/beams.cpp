@@ -140,8 +140,9 @@ FRACTURE_VECTOR_KERNEL void respond_near_reference(
   }
 }
 
+// respond_near_reference on a block's arrays, part P into its own output arrays.
 template <BeamResponsePart P>
-void respond_near_reference(ResponseBlock& blk, std::size_t count) {
+void respond_block(ResponseBlock& blk, std::size_t count) {
   double* out0 = P == BeamResponsePart::forces ? blk.fx : P == BeamResponsePart::energy ? blk.energy : blk.strain;
   respond_near_reference<P>(count, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, blk.alpha,
                             blk.beta, blk.delta, out0, blk.fy, blk.torque_i, blk.torque_j, blk.near);
@@ -192,7 +193,7 @@ template <BeamResponsePart P, class Use>
 void Beams::each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                           Use&& use) const {
   each_block(q, t, first, last, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
-    respond_near_reference<P>(blk, count);
+    respond_block<P>(blk, count);
     for (std::size_t k = 0; k < count; ++k) {
       const auto b = static_cast<std::size_t>(t.beam[start + k]);
       if (blk.near[k] != 0.0) {
@@ -298,10 +299,10 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
       for (std::size_t k = 0; k < n; ++k) {
         Verdict& v = verdict[start + k];
         v.mode = 0;
-        if (blk.near[k] != 0.0) continue;  // holds for sure
+        if (blk.near[k] != 0.0) continue;  // holds for sure (breaking_bound_holds)
         const auto b = static_cast<std::size_t>(active_.beam[start + k]);
-        v.mode = breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k], blk.l0[k],
-                               stiffness(b), t_eps, t_theta, v.energy);
+        v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
+                                     blk.l0[k], stiffness(b), t_eps, t_theta, v.energy);
         mine_any = mine_any || v.mode != 0;
       }
     });
