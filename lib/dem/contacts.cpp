@@ -366,49 +366,63 @@ void ContactSearch::find_end(ContactList& out) {
 }
 
 namespace {
-// Relative velocity of j with respect to i at R, v_rel = v_j + ω_j ẑ×(R−c_j) − v_i − ω_i ẑ×(R−c_i).
-inline Vec2 relative_velocity(std::size_t n, std::span<const double> q, std::span<const double> v, std::size_t i,
-                              std::size_t j, double rx, double ry) {
+// The contact force terms `terms` (a set of bits 1 << ContactTerm) on the contacts [first, last), each contact's
+// terms in engine order (damping adds to fn, which friction reads), in one pass over the list: per term, the
+// force on i of contact k (j receives its opposite, both applied at R_k) is added to the contact's slot
+// (c.pair_force), and its power, F·(v_i(R) − v_j(R)), written to the term's slot of the contact (summed by
+// contact_power in contact order: the same bits whatever the thread count). The velocities at R and the
+// effective mass are computed once per contact for the terms that use them: the same values as term by term.
+template <bool Elastic, bool Damping, bool Friction>
+void add_pair_forces(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
+                     std::span<const double> v, Range contacts) {
+  const std::size_t n = bodies.n;
   const double* x = q.data();
   const double* y = x + n;
   const double* vx = v.data();
   const double* vy = vx + n;
   const double* w = vy + n;
-  const double vix = vx[i] - w[i] * (ry - y[i]), viy = vy[i] + w[i] * (rx - x[i]);
-  const double vjx = vx[j] - w[j] * (ry - y[j]), vjy = vy[j] + w[j] * (rx - x[j]);
-  return {vjx - vix, vjy - viy};
-}
-
-// One contact force term on the contacts [first, last): force_of(k) gives the force on i of contact k (j
-// receives its opposite), applied at R_k. The force is added to the contact's slot (c.pair_force), and its
-// power, F·(v_i(R) − v_j(R)), written to the term's slot of the contact (summed by contact_power in contact
-// order: the same bits whatever the thread count).
-template <class ForceOf>
-void add_pair_forces(ContactList& c, ContactTerm term, std::size_t n, std::span<const double> q,
-                     std::span<const double> v, Range contacts, ForceOf&& force_of) {
-  const double* x = q.data();
-  const double* y = x + n;
-  const double* vx = v.data();
-  const double* vy = vx + n;
-  const double* w = vy + n;
+  const double* mass = bodies.mass.data();
   PairForce* pf = c.pair_force.data();
-  double* pw = c.term_power[static_cast<std::size_t>(term)].data();
+  double* power_elastic = c.term_power[static_cast<std::size_t>(ContactTerm::elastic)].data();
+  double* power_damping = c.term_power[static_cast<std::size_t>(ContactTerm::damping)].data();
+  double* power_friction = c.term_power[static_cast<std::size_t>(ContactTerm::friction)].data();
+  const double yh = p.grain_modulus * p.thickness;
   for (std::size_t k = contacts.first; k < contacts.last; ++k) {
-    const Vec2 force = force_of(k);
     const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const double fx = force.x(), fy = force.y();
+    const double nx = c.nx[k], ny = c.ny[k];
+    // The velocities of i and j at R, v = v_c + ω ẑ×(R − c), and v_rel = v_j(R) − v_i(R).
     const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
     const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
     const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
-    pf[k].fx += fx;
-    pf[k].fy += fy;
-    pw[k] = fx * (vix - vjx) + fy * (viy - vjy);
+    const double dvx = vix - vjx, dvy = viy - vjy;
+    [[maybe_unused]] const double vrx = vjx - vix, vry = vjy - viy;
+    [[maybe_unused]] const double m_eff = Damping || Friction ? mass[i] * mass[j] / (mass[i] + mass[j]) : 0.0;
+    auto add = [&](double fx, double fy, double* power) {
+      pf[k].fx += fx;
+      pf[k].fy += fy;
+      power[k] = fx * dvx + fy * dvy;
+    };
+    if constexpr (Elastic) {  // F_n = −Y·h·A/L_c along n
+      const double fn = -yh * c.area[k] * c.inv_lc[k];
+      c.fn[k] = fn;
+      add(fn * nx, fn * ny, power_elastic);
+    }
+    if constexpr (Damping) {  // + m_eff·γ_N·v_n along n
+      const double vn = vrx * nx + vry * ny;
+      const double fd = m_eff * p.gamma_n * vn;
+      c.fn[k] += fd;
+      add(fd * nx, fd * ny, power_damping);
+    }
+    if constexpr (Friction) {  // F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
+      const double tx = -ny, ty = nx;
+      const double vt = vrx * tx + vry * ty;
+      const double ft = std::copysign(std::min(m_eff * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
+      add(ft * tx, ft * ty, power_friction);
+    }
   }
 }
 
-double effective_mass(const Bodies& bodies, std::size_t i, std::size_t j) {
-  return bodies.mass[i] * bodies.mass[j] / (bodies.mass[i] + bodies.mass[j]);
-}
+constexpr unsigned term_bit(ContactTerm t) { return 1u << static_cast<unsigned>(t); }
 
 // A term as a team of its own: each thread its part of the list, then the power summed.
 double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
@@ -420,40 +434,21 @@ double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, co
 
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts) {
-  const std::size_t n = bodies.n;
-  // The velocity of j relative to i at R_k, and the effective mass, of contact k (the dissipative terms).
-  auto motion = [&](std::size_t k) {
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    return std::pair{relative_velocity(n, q, v, i, j, c.rx[k], c.ry[k]), effective_mass(bodies, i, j)};
-  };
-  switch (term) {
-    case ContactTerm::elastic: {
-      const double yh = p.grain_modulus * p.thickness;
-      add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
-        const double fn = -yh * c.area[k] * c.inv_lc[k];
-        c.fn[k] = fn;
-        return Vec2(fn * c.nx[k], fn * c.ny[k]);
-      });
-      return;
-    }
-    case ContactTerm::damping:
-      add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
-        const auto [vr, m_eff] = motion(k);
-        const double vn = vr.x() * c.nx[k] + vr.y() * c.ny[k];
-        const double fd = m_eff * p.gamma_n * vn;
-        c.fn[k] += fd;
-        return Vec2(fd * c.nx[k], fd * c.ny[k]);
-      });
-      return;
-    case ContactTerm::friction:
-      add_pair_forces(c, term, n, q, v, contacts, [&](std::size_t k) {
-        const auto [vr, m_eff] = motion(k);
-        const double tx = -c.ny[k], ty = c.nx[k];  // t = ẑ × n
-        const double vt = vr.x() * tx + vr.y() * ty;
-        const double ft = std::copysign(std::min(m_eff * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
-        return Vec2(ft * tx, ft * ty);
-      });
-      return;
+  contact_terms(term_bit(term), c, p, bodies, q, v, contacts);
+}
+
+void contact_terms(unsigned terms, ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                   std::span<const double> q, std::span<const double> v, Range contacts) {
+  constexpr unsigned e = term_bit(ContactTerm::elastic), d = term_bit(ContactTerm::damping),
+                     f = term_bit(ContactTerm::friction);
+  switch (terms & (e | d | f)) {
+    case e: add_pair_forces<true, false, false>(c, p, bodies, q, v, contacts); return;
+    case d: add_pair_forces<false, true, false>(c, p, bodies, q, v, contacts); return;
+    case f: add_pair_forces<false, false, true>(c, p, bodies, q, v, contacts); return;
+    case e | d: add_pair_forces<true, true, false>(c, p, bodies, q, v, contacts); return;
+    case e | f: add_pair_forces<true, false, true>(c, p, bodies, q, v, contacts); return;
+    case d | f: add_pair_forces<false, true, true>(c, p, bodies, q, v, contacts); return;
+    case e | d | f: add_pair_forces<true, true, true>(c, p, bodies, q, v, contacts); return;
     default: return;
   }
 }

@@ -187,6 +187,10 @@ double contact_friction(ContactList& c, const ContactParameters& p, const Bodies
                         std::span<const double> q, std::span<const double> v);
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts);
+// The same for several terms at once, `terms` a set of bits (1 << ContactTerm): each contact's terms in engine
+// order in one pass over the contacts, with the same results as the terms one after another.
+void contact_terms(unsigned terms, ContactList& c, const ContactParameters& p, const Bodies& bodies,
+                   std::span<const double> q, std::span<const double> v, Range contacts);
 double contact_power(const ContactList& c, ContactTerm term);
 // A team function, after a barrier behind every term: the sums of a term's power over the blocks of the list
 // (its first `count` contacts) that start in `mine`, this thread's part of it. After the team,

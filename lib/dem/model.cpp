@@ -99,10 +99,10 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
     if (contact_list) {
       // The block this thread filled (not contacts_.mine(): the list's `blocks` is set after the barrier).
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
-      for (const Term term : terms_) {
-        if (term == Term::beams) continue;
-        contact_term(contact_term_of(term), contacts_, contact_parameters_, bodies_, q, v, mine);
-      }
+      unsigned terms = 0;  // (the scene's contact terms, in one pass over the list)
+      for (const Term term : terms_)
+        if (term != Term::beams) terms |= 1u << static_cast<unsigned>(contact_term_of(term));
+      contact_terms(terms, contacts_, contact_parameters_, bodies_, q, v, mine);
     }
 #pragma omp barrier
     // The list's size and diagnostics by one thread (read after the team); each thread the power sums of the
