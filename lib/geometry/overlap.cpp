@@ -275,12 +275,13 @@ bool regular_vertices(const PairEdges& edges, const int* label, std::size_t K, V
     ok &= (e.x() * line[k].dx + e.y() * line[k].dy > 0.0) & (e.squaredNorm() > edges.tol2);
   }
   if (K >= 5) {
-    for (std::size_t k = 0; k < K; ++k) {
-      for (std::size_t e = 0; e < K; ++e) {
-        if (e == k || e + 1 == k || (e + 1 == K && k == 0)) continue;  // the vertex's own lines
-        ok &= line[e].dx * (v[k].y() - line[e].ay) - line[e].dy * (v[k].x() - line[e].ax) > 0.0;
-      }
-    }
+    // Every turn is to the left by less than π (the crossings' den > 0; the corners of convex polygons), so the
+    // direction of the edges winds once, and the polygon is convex, when it passes +x once: dy going from below
+    // 0 to 0 or above (exact signs of the lines' directions; a corner bent backwards by round-off at most adds
+    // a pass, which refuses the polygon).
+    int passes = 0;
+    for (std::size_t k = 0; k < K; ++k) passes += (line[k == 0 ? K - 1 : k - 1].dy < 0.0) & (line[k].dy >= 0.0);
+    ok &= passes == 1;
   }
   return ok;
 }
