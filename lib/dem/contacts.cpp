@@ -172,7 +172,8 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
           const Vec2 dij(dx, dy);
           buf.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
                          static_cast<std::int32_t>(geometry::facing_edge(world_polygon(i), dij)),
-                         static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false, {}});
+                         static_cast<std::int32_t>(geometry::facing_edge(world_polygon(j), -dij)), false, 0, 0,
+                         {}});
         }
       }
     }
@@ -214,14 +215,15 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
   pair_state_[p] = PairState::candidate;
   const auto pi = world_polygon(i), pj = world_polygon(j);
   if (!pair.overlapping) {
-    if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack) ||
-        geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack))
+    // (Each test starts from the vertex that lay deepest at the last one: mostly, three vertices tested.)
+    if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack, pair.deepest_i) ||
+        geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack, pair.deepest_j))
       return true;
     const Vec2 dc(dx, dy);
     const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
     // (A facing edge that is the cached one was just tested.)
-    if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack)) ||
-        (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack))) {
+    if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack, pair.deepest_i)) ||
+        (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack, pair.deepest_j))) {
       pair.edge_i = static_cast<std::int32_t>(fi);
       pair.edge_j = static_cast<std::int32_t>(fj);
       return true;

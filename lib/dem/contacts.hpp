@@ -130,6 +130,7 @@ class ContactSearch {
     std::int32_t i, j;
     std::int32_t edge_i, edge_j;  // the facing edges that last separated the pair (first vertex index)
     bool overlapping;             // the pair overlapped at the last search
+    std::uint8_t deepest_i, deepest_j;  // the vertices of P_j and P_i deepest along edge_i's and edge_j's normals
     geometry::OverlapLines lines; // the lines of its last overlap (convex_overlap's cache)
   };
   std::vector<NeighbourPair> neighbours_;

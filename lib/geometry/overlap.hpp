@@ -132,5 +132,12 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
 // separated by it. A neighbour list caches the separating edges of each pair and tests them first.
 std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d);
 bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack);
+// The same, with a hint kept by the caller: `deepest_vertex`, the vertex of q that lay deepest along the edge's
+// normal at the last test (updated when another does). When it is still no deeper than its two neighbours it is
+// the deepest, on a convex q, and only those three are tested. (On a q that round-off made not quite convex the
+// answer may differ from the full test's by round-off, within the slack's margin: a pair it calls separated
+// still has an overlap area below eps_A.)
+bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack,
+                    std::uint8_t& deepest_vertex);
 
 }  // namespace frac::geometry

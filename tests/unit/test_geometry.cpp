@@ -453,6 +453,35 @@ TEST(Overlap, NearParallelEdgesSeparated1em12) {
   }
 }
 
+// The separating-edge test with the caller's hint (the vertex that lay deepest at the last test) answers as the
+// full test does, from any hint, on random convex polygons at distances from well apart to well overlapping, with
+// slacks from 0 to large; and it leaves the hint on the deepest vertex, from which the next test looks at three.
+TEST(Overlap, SeparatingEdgeFromTheDeepestVertexAgreesWithTheFullTest) {
+  frac::Rng rng(17);
+  int separated = 0, tests = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Polygon p = random_convex(rng, Vec2(0, 0), 1.0);
+    const Polygon q = random_convex(rng, Vec2(rng.uniform(-3, 3), rng.uniform(-3, 3)), 1.0);
+    const double slack = trial % 3 == 0 ? 0.0 : rng.uniform(0.0, 0.3);
+    for (std::size_t edge = 0; edge < p.size(); ++edge) {
+      const bool full = geo::edge_separates(p, edge, q, slack);
+      for (std::size_t start = 0; start <= q.size(); ++start) {  // (start == q.size(): a hint out of range)
+        auto hint = static_cast<std::uint8_t>(start);
+        ASSERT_EQ(geo::edge_separates(p, edge, q, slack, hint), full) << "trial " << trial << " edge " << edge;
+        // The hint now names a deepest vertex: no vertex of q lies deeper along the edge's normal.
+        const Vec2 e = p[(edge + 1) % p.size()] - p[edge];
+        auto inward = [&](const Vec2& v) { return e.x() * (v.y() - p[edge].y()) - e.y() * (v.x() - p[edge].x()); };
+        ASSERT_LT(hint, q.size());
+        for (const Vec2& v : q) EXPECT_GE(inward(q[hint]), inward(v));
+        ++tests;
+        separated += full;
+      }
+    }
+  }
+  EXPECT_GT(separated, tests / 4);
+  EXPECT_LT(separated, tests * 3 / 4 + tests / 5);
+}
+
 TEST(Overlap, SliversAroundTheAreaTolerance) {
   const Polygon pi = rect(0, 0, 1, 1);
   // 1e-12 deep over a length 0.5: 5e-13 < eps_A = 1e-12 (g = 1): none.
