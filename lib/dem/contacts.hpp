@@ -1,8 +1,9 @@
 #pragma once
 // Contacts between cells (physics/polygon-dem.md §3): neighbour search on a cell list with cells of
 // the largest polygon diameter, pairs culled by bounding circles before any clipping, the overlap
-// geometry of each candidate pair (geometry/overlap), and the three contact force terms, each a
-// separate loop over the contact list that the engine calls only when the scene turns it on:
+// geometry of each candidate pair (geometry/overlap), and the three contact force terms, each a separate
+// unit that runs only when the scene turns it on (the engine runs the scene's terms in one pass over the
+// contact list, contact_terms, compiled for that set of terms):
 //   contact_elastic   F_n = −Y·A·h/L_c along n, at the contact line's midpoint R
 //   contact_damping   + m_eff·γ_N·v_n along n (v_n < 0 while approaching)
 //   contact_friction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
