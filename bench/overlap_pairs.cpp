@@ -121,7 +121,8 @@ int main(int argc, char** argv) {
           }
         }
         const std::chrono::duration<double, std::nano> t = std::chrono::steady_clock::now() - start;
-        rounds.push_back(t.count() / (static_cast<double>(passes) * static_cast<double>(std::max<std::size_t>(which.size(), 1))));
+        const auto count = static_cast<double>(std::max<std::size_t>(which.size(), 1));
+        rounds.push_back(t.count() / (static_cast<double>(passes) * count));
       }
       std::sort(rounds.begin(), rounds.end());
       if (!(sink >= 0.0)) std::fprintf(stderr, "(sum %g)\n", sink);  // keeps the work

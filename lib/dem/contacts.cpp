@@ -381,7 +381,7 @@ void ContactSearch::find_end(ContactList& out) {
 }
 
 namespace {
-// The contact force terms `terms` (a set of bits 1 << ContactTerm) on the contacts [first, last), each contact's
+// The contact force terms `terms` (a set of contact_term_bit) on the contacts [first, last), each contact's
 // terms in engine order (damping adds to fn, which friction reads), in one pass over the list: per term, the
 // force on i of contact k (j receives its opposite, both applied at R_k) is added to the contact's slot
 // (c.pair_force), and its power, F·(v_i(R) − v_j(R)), written to the term's slot of the contact (summed by
@@ -437,8 +437,6 @@ void add_pair_forces(ContactList& c, const ContactParameters& p, const Bodies& b
   }
 }
 
-constexpr unsigned term_bit(ContactTerm t) { return 1u << static_cast<unsigned>(t); }
-
 // A term as a team of its own: each thread its part of the list, then the power summed.
 double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                 std::span<const double> q, std::span<const double> v) {
@@ -449,13 +447,13 @@ double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, co
 
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts) {
-  contact_terms(term_bit(term), c, p, bodies, q, v, contacts);
+  contact_terms(contact_term_bit(term), c, p, bodies, q, v, contacts);
 }
 
 void contact_terms(unsigned terms, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                    std::span<const double> q, std::span<const double> v, Range contacts) {
-  constexpr unsigned e = term_bit(ContactTerm::elastic), d = term_bit(ContactTerm::damping),
-                     f = term_bit(ContactTerm::friction);
+  constexpr unsigned e = contact_term_bit(ContactTerm::elastic), d = contact_term_bit(ContactTerm::damping),
+                     f = contact_term_bit(ContactTerm::friction);
   switch (terms & (e | d | f)) {
     case e: add_pair_forces<true, false, false>(c, p, bodies, q, v, contacts); return;
     case d: add_pair_forces<false, true, false>(c, p, bodies, q, v, contacts); return;

@@ -189,8 +189,9 @@ double contact_friction(ContactList& c, const ContactParameters& p, const Bodies
                         std::span<const double> q, std::span<const double> v);
 void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                   std::span<const double> q, std::span<const double> v, Range contacts);
-// The same for several terms at once, `terms` a set of bits (1 << ContactTerm): each contact's terms in engine
+// The same for several terms at once, `terms` a set of bits (contact_term_bit): each contact's terms in engine
 // order in one pass over the contacts, with the same results as the terms one after another.
+constexpr unsigned contact_term_bit(ContactTerm t) { return 1u << static_cast<unsigned>(t); }
 void contact_terms(unsigned terms, ContactList& c, const ContactParameters& p, const Bodies& bodies,
                    std::span<const double> q, std::span<const double> v, Range contacts);
 double contact_power(const ContactList& c, ContactTerm term);

@@ -101,7 +101,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
       unsigned terms = 0;  // (the scene's contact terms, in one pass over the list)
       for (const Term term : terms_)
-        if (term != Term::beams) terms |= 1u << static_cast<unsigned>(contact_term_of(term));
+        if (term != Term::beams) terms |= contact_term_bit(contact_term_of(term));
       contact_terms(terms, contacts_, contact_parameters_, bodies_, q, v, mine);
     }
 #pragma omp barrier
