@@ -211,8 +211,15 @@ struct PairEdges {
   bool inside_polygon(double x, double y, bool j) const {
     const Near& f = near[j];
     if (f.edge >= 0 && (x - f.mx) * (x - f.mx) + (y - f.my) * (y - f.my) <= f.reach2) {
-      return inside(x, y, line(prev(f.edge)), tol2) & inside(x, y, line(f.edge), tol2) &
-             inside(x, y, line(next(f.edge)), tol2);
+      // The lines of edges e−1, e, e+1 from their four vertices, each as line() makes it.
+      const std::span<const Vec2> p = j ? pj : pi;
+      const std::size_t size = p.size(), e = static_cast<std::size_t>(f.edge - (j ? n : 0));
+      const std::size_t e0 = e == 0 ? size - 1 : e - 1, e2 = e + 1 == size ? 0 : e + 1;
+      const std::size_t e3 = e2 + 1 == size ? 0 : e2 + 1;
+      const double x0 = p[e0].x() - ox, y0 = p[e0].y() - oy, x1 = p[e].x() - ox, y1 = p[e].y() - oy;
+      const double x2 = p[e2].x() - ox, y2 = p[e2].y() - oy, x3 = p[e3].x() - ox, y3 = p[e3].y() - oy;
+      return inside(x, y, {x0, y0, x1 - x0, y1 - y0}, tol2) & inside(x, y, {x1, y1, x2 - x1, y2 - y1}, tol2) &
+             inside(x, y, {x2, y2, x3 - x2, y3 - y2}, tol2);
     }
     const std::span<const Vec2> p = j ? pj : pi;
     double ax = p.back().x() - ox, ay = p.back().y() - oy;
