@@ -176,15 +176,16 @@ struct PairEdges {
   };
   bool of_j(int l) const { return l >= n; }
   int next(int l) const { return l < n ? (l + 1 == n ? 0 : l + 1) : (l + 1 == n + m ? n : l + 1); }
-  int prev(int l) const { return l < n ? (l == 0 ? n - 1 : l - 1) : (l == n ? n + m - 1 : l - 1); }
+  // The line from a to b (world vertices), in the local frame.
+  Line through(const Vec2& a, const Vec2& b) const {
+    const double ax = a.x() - ox, ay = a.y() - oy;
+    return {ax, ay, (b.x() - ox) - ax, (b.y() - oy) - ay};
+  }
   Line line(int l) const {
     const bool j = l >= n;
     const std::span<const Vec2> p = j ? pj : pi;
     const auto k = static_cast<std::size_t>(j ? l - n : l);
-    const Vec2& a = p[k];
-    const Vec2& b = p[k + 1 == p.size() ? 0 : k + 1];
-    const double ax = a.x() - ox, ay = a.y() - oy;
-    return {ax, ay, (b.x() - ox) - ax, (b.y() - oy) - ay};
+    return through(p[k], p[k + 1 == p.size() ? 0 : k + 1]);
   }
   // A facing edge of each polygon (P_i's first) whose reach leaves room for the margin: within the reach of
   // its midpoint, every line of that polygon but the edge's own and its two neighbours' is more than
@@ -211,15 +212,13 @@ struct PairEdges {
   bool inside_polygon(double x, double y, bool j) const {
     const Near& f = near[j];
     if (f.edge >= 0 && (x - f.mx) * (x - f.mx) + (y - f.my) * (y - f.my) <= f.reach2) {
-      // The lines of edges e−1, e, e+1 from their four vertices, each as line() makes it.
+      // The lines of edges e−1, e, e+1, through their four vertices.
       const std::span<const Vec2> p = j ? pj : pi;
       const std::size_t size = p.size(), e = static_cast<std::size_t>(f.edge - (j ? n : 0));
       const std::size_t e0 = e == 0 ? size - 1 : e - 1, e2 = e + 1 == size ? 0 : e + 1;
       const std::size_t e3 = e2 + 1 == size ? 0 : e2 + 1;
-      const double x0 = p[e0].x() - ox, y0 = p[e0].y() - oy, x1 = p[e].x() - ox, y1 = p[e].y() - oy;
-      const double x2 = p[e2].x() - ox, y2 = p[e2].y() - oy, x3 = p[e3].x() - ox, y3 = p[e3].y() - oy;
-      return inside(x, y, {x0, y0, x1 - x0, y1 - y0}, tol2) & inside(x, y, {x1, y1, x2 - x1, y2 - y1}, tol2) &
-             inside(x, y, {x2, y2, x3 - x2, y3 - y2}, tol2);
+      return inside(x, y, through(p[e0], p[e]), tol2) & inside(x, y, through(p[e], p[e2]), tol2) &
+             inside(x, y, through(p[e2], p[e3]), tol2);
     }
     const std::span<const Vec2> p = j ? pj : pi;
     double ax = p.back().x() - ox, ay = p.back().y() - oy;
