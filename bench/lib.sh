@@ -113,3 +113,14 @@ config_cells() {
   # shellcheck disable=SC2086
   echo "$(median_of ${cpu[$1]}) | ${sorted[0]} | ${sorted[-1]} | $(median_of ${wall[$1]})"
 }
+
+# same_bits A.h5 B.h5: "yes" when the two files hold the same data bit for bit, provenance and the creator's
+# name and version aside, else "no" (a dataset or attribute that differs shows as "N differences found";
+# empty datasets, which h5diff cannot compare, count as the same). The output is captured before it is
+# searched, with `|| true`: h5diff exits 1 when it finds differences, which under pipefail, or with grep -q
+# breaking its pipe, would read as "no difference".
+same_bits() {
+  local report
+  report=$(h5diff -r --exclude-path /provenance --exclude-attribute /h5md/creator "$1" "$2" 2>&1 || true)
+  if grep -q '^[1-9][0-9]* differences\? found' <<<"$report"; then echo no; else echo yes; fi
+}
