@@ -201,8 +201,8 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
 // would keep, so the order of the tests changes no result, only the time: a pair that overlapped at the last
 // search goes straight to clipping; the others try the facing edges that last separated them (cached per
 // pair), then the current facing edges, which become the cached ones when they separate. Returns whether
-// the bounding circles overlap.
-bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, double slack) {
+// the bounding circles overlap. Inline, up to the cached edges (what most pairs need); the rest out of line.
+inline bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, double slack) {
   auto& pair = neighbours_[p];
   const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
   const double dx = x[j] - x[i], dy = y[j] - y[i];
@@ -213,20 +213,31 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
     return false;
   }
   pair_state_[p] = PairState::candidate;
+  // (Each test starts from the vertex that lay deepest at the last one: mostly, three vertices tested.)
+  if (!pair.overlapping &&
+      (geometry::edge_separates(world_polygon(i), static_cast<std::size_t>(pair.edge_i), world_polygon(j), slack,
+                                pair.deepest_i) ||
+       geometry::edge_separates(world_polygon(j), static_cast<std::size_t>(pair.edge_j), world_polygon(i), slack,
+                                pair.deepest_j)))
+    return true;
+  test_pair_further(p, x, y, slack);
+  return true;
+}
+
+// test_pair past the cached edges: the current facing edges, then the overlap.
+void ContactSearch::test_pair_further(std::size_t p, const double* x, const double* y, double slack) {
+  auto& pair = neighbours_[p];
+  const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
   const auto pi = world_polygon(i), pj = world_polygon(j);
   if (!pair.overlapping) {
-    // (Each test starts from the vertex that lay deepest at the last one: mostly, three vertices tested.)
-    if (geometry::edge_separates(pi, static_cast<std::size_t>(pair.edge_i), pj, slack, pair.deepest_i) ||
-        geometry::edge_separates(pj, static_cast<std::size_t>(pair.edge_j), pi, slack, pair.deepest_j))
-      return true;
-    const Vec2 dc(dx, dy);
+    const Vec2 dc(x[j] - x[i], y[j] - y[i]);
     const auto fi = geometry::facing_edge(pi, dc), fj = geometry::facing_edge(pj, -dc);
     // (A facing edge that is the cached one was just tested.)
     if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack, pair.deepest_i)) ||
         (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack, pair.deepest_j))) {
       pair.edge_i = static_cast<std::int32_t>(fi);
       pair.edge_j = static_cast<std::int32_t>(fj);
-      return true;
+      return;
     }
   }
   geometry::OverlapHint hint;
@@ -242,7 +253,6 @@ bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, d
                     geo.kind == geometry::ContactGeometry::Kind::enclosed, geo.distinct_crossings > 2};
     pair_state_[p] = PairState::overlapping;
   }
-  return true;
 }
 
 // The block's contacts, entries [offset, offset + count) of the list, in pair order from pair `first` on (the

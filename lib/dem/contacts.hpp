@@ -122,6 +122,7 @@ class ContactSearch {
   std::vector<GridBody> grid_body_;
   void rebuild(std::span<const double> q, ContactList& out);  // a team function, barriers at its ends
   bool test_pair(std::size_t p, const double* x, const double* y, double slack);
+  [[gnu::noinline]] void test_pair_further(std::size_t p, const double* x, const double* y, double slack);
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when two cells'
   // centroids may together have moved by more than the skin since the last build, so no pair can start to
   // overlap unseen.

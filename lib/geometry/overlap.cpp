@@ -607,36 +607,8 @@ std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d) {
   return f_out >= f_in ? s : prev;
 }
 
-namespace {
-// Edge `edge` of p as edge_separates tests it. clearance(v) = −e × (v − a) is the distance of v outside the
-// edge's line (p's inside is on its left) times |e|: negative for a vertex that has crossed into p, and a
-// penetration of more than `slack` shows as clearance < 0 with clearance² > limit2 (compared squared, no sqrt).
-struct SeparatingEdge {
-  Vec2 a, w;  // first vertex; (e.y, e.x), both products of the cross product in one vector multiply
-  double limit2;
-  bool valid;
-  SeparatingEdge(std::span<const Vec2> p, std::size_t edge, double slack) {
-    const std::size_t n = p.size();
-    valid = edge < n;
-    if (!valid) return;
-    a = p[edge];
-    const Vec2 e = p[edge + 1 == n ? 0 : edge + 1] - a;
-    const double e2 = e.squaredNorm();
-    valid = e2 > 0;
-    w = Vec2(e.y(), e.x());
-    limit2 = slack * slack * e2;
-  }
-  double clearance(const Vec2& v) const {
-    const Vec2 t = (v - a).cwiseProduct(w);
-    return t.x() - t.y();
-  }
-  // The deepest vertex decides (the square grows as the clearance falls below 0); NaN clearances do not count.
-  bool separates(double deepest) const { return !(deepest < 0 && deepest * deepest > limit2); }
-};
-}  // namespace
-
 bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack) {
-  const SeparatingEdge line(p, edge, slack);
+  const detail::SeparatingEdge line(p, edge, slack);
   if (!line.valid) return false;
   // Branch-free: a separated pair, the usual case, has every vertex to test anyway.
   double deepest = 0.0;
@@ -644,22 +616,9 @@ bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const V
   return line.separates(deepest);
 }
 
-bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack,
-                    std::uint8_t& deepest_vertex) {
-  const SeparatingEdge line(p, edge, slack);
-  if (!line.valid) return false;
-  const std::size_t m = q.size();
-  if (m == 0) return true;
-  // The clearance is linear along the edge's normal, so on a convex q a vertex no deeper than its two neighbours
-  // is the deepest: then they are the only other vertices to test.
-  const std::size_t s = deepest_vertex < m ? deepest_vertex : 0;
-  const double here = line.clearance(q[s]);
-  if (here <= line.clearance(q[s == 0 ? m - 1 : s - 1]) && here <= line.clearance(q[s + 1 == m ? 0 : s + 1])) {
-    deepest_vertex = static_cast<std::uint8_t>(s);
-    return line.separates(std::min(0.0, here));
-  }
+bool detail::separates_from_all(const SeparatingEdge& line, std::span<const Vec2> q, std::uint8_t& deepest_vertex) {
   double deepest = 0.0, lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < m; ++k) {
+  for (std::size_t k = 0; k < q.size(); ++k) {
     const double d = line.clearance(q[k]);
     deepest = std::min(deepest, d);
     if (d < lowest) {
