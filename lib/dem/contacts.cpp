@@ -59,13 +59,17 @@ void ContactSearch::world_vertices_and_staleness(std::span<const double> q) {
   const double* ref = ref_.data();
   Moved moved{built ? 0.0 : kInfinity, built ? 0.0 : kInfinity};
   const Range mine = this_thread_range(n);
+  // (Raw pointers and the centroid in locals: a store to world may alias x and y, which would be reloaded.)
+  const auto* offset = mesh_->vertex_offset.data();
+  const Vec2* body = mesh_->vertex.data();
+  Vec2* world = world_.data();
   for (std::size_t k = mine.first; k < mine.last; ++k) {
     const double c = std::cos(phi[k]), s = std::sin(phi[k]);
-    const auto b = static_cast<std::size_t>(mesh_->vertex_offset[k]);
-    const auto e = static_cast<std::size_t>(mesh_->vertex_offset[k + 1]);
-    for (std::size_t v = b; v < e; ++v) {
-      const Vec2& p = mesh_->vertex[v];
-      world_[v] = Vec2(x[k] + c * p.x() - s * p.y(), y[k] + s * p.x() + c * p.y());
+    const double xk = x[k], yk = y[k];
+    const auto e = static_cast<std::size_t>(offset[k + 1]);
+    for (auto v = static_cast<std::size_t>(offset[k]); v < e; ++v) {
+      const double px = body[v].x(), py = body[v].y();
+      world[v] = Vec2(xk + c * px - s * py, yk + s * px + c * py);
     }
     if (built) {
       const double dx = x[k] - ref[k], dy = y[k] - ref[n + k];

@@ -234,24 +234,36 @@ void Gear5::apply_prescribed(const System& system, double t) {
 }
 
 void Gear5::step(System& system) {
-  double* r0 = r_[0].data();
-  double* r1 = r_[1].data();
-  double* r2 = r_[2].data();
-  double* r3 = r_[3].data();
-  double* r4 = r_[4].data();
-  const double* r5 = r_[5].data();
+  double* const r0 = r_[0].data();
+  double* const r1 = r_[1].data();
+  double* const r2 = r_[2].data();
+  double* const r3 = r_[3].data();
+  double* const r4 = r_[4].data();
+  double* const r5 = r_[5].data();
+  double* const v = v_.data();
+  const double* const a = a_.data();
   const double inv_dt = 1.0 / dt_;
-  // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders.
-  double* v = v_.data();
-  for_coordinate_ranges(n_, system.coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+  // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders. (In each loop the arrays
+  // are restrict pointers and every value is read once into a local: the stores then force no reloads.)
+  for_coordinate_ranges(n_, system.coordinate_blocks(), [=](std::size_t first, std::size_t last) {
+    double* __restrict q0 = r0;
+    double* __restrict q1 = r1;
+    double* __restrict q2 = r2;
+    double* __restrict q3 = r3;
+    double* __restrict q4 = r4;
+    const double* __restrict q5 = r5;
+    double* __restrict w = v;
+    const double scale = inv_dt;
 #pragma omp simd
     for (std::size_t i = first; i < last; ++i) {
-      r0[i] += r1[i] + r2[i] + r3[i] + r4[i] + r5[i];
-      r1[i] += 2 * r2[i] + 3 * r3[i] + 4 * r4[i] + 5 * r5[i];
-      r2[i] += 3 * r3[i] + 6 * r4[i] + 10 * r5[i];
-      r3[i] += 4 * r4[i] + 10 * r5[i];
-      r4[i] += 5 * r5[i];
-      v[i] = r1[i] * inv_dt;
+      const double d1 = q1[i], d2 = q2[i], d3 = q3[i], d4 = q4[i], d5 = q5[i];
+      q0[i] += d1 + d2 + d3 + d4 + d5;
+      const double n1 = d1 + (2 * d2 + 3 * d3 + 4 * d4 + 5 * d5);
+      q1[i] = n1;
+      q2[i] = d2 + (3 * d3 + 6 * d4 + 10 * d5);
+      q3[i] = d3 + (4 * d4 + 10 * d5);
+      q4[i] = d4 + 5 * d5;
+      w[i] = n1 * scale;
     }
   });
   t_ += dt_;
@@ -259,24 +271,34 @@ void Gear5::step(System& system) {
   system.accelerations(t_, r_[0], v_, a_);
   // Corrector.
   const double half_dt2 = 0.5 * dt_ * dt_;
-  double* r5w = r_[5].data();
-  const double* a = a_.data();
-  // (and whether q and v are finite: Σ (q·0 + v·0) is 0 exactly then, NaN otherwise)
-  finite_ = sum_over_coordinate_ranges(n_, system.coordinate_blocks(), [&](std::size_t first, std::size_t last) {
-              double z = 0;
-#pragma omp simd reduction(+ : z)
+  // (and whether q and v are finite: q·0 + v·0 is 0 exactly then, NaN otherwise; an integer reduction, which
+  // the vectoriser takes where `omp simd reduction` on a double in this lambda kept the loop scalar)
+  finite_ = sum_over_coordinate_ranges(n_, system.coordinate_blocks(), [=](std::size_t first, std::size_t last) {
+              double* __restrict q0 = r0;
+              double* __restrict q1 = r1;
+              double* __restrict q2 = r2;
+              double* __restrict q3 = r3;
+              double* __restrict q4 = r4;
+              double* __restrict q5 = r5;
+              double* __restrict w = v;
+              const double* __restrict acc = a;
+              const double h2 = half_dt2, scale = inv_dt;
+              int not_finite = 0;
+#pragma omp simd reduction(| : not_finite)
               for (std::size_t i = first; i < last; ++i) {
-                const double delta = half_dt2 * a[i] - r2[i];
-                r0[i] += kGearC[0] * delta;
-                r1[i] += kGearC[1] * delta;
-                r2[i] += kGearC[2] * delta;
-                r3[i] += kGearC[3] * delta;
-                r4[i] += kGearC[4] * delta;
-                r5w[i] += kGearC[5] * delta;
-                v[i] = r1[i] * inv_dt;
-                z += r0[i] * 0.0 + v[i] * 0.0;
+                const double delta = h2 * acc[i] - q2[i];
+                const double n0 = q0[i] + kGearC[0] * delta, n1 = q1[i] + kGearC[1] * delta;
+                q0[i] = n0;
+                q1[i] = n1;
+                q2[i] += kGearC[2] * delta;
+                q3[i] += kGearC[3] * delta;
+                q4[i] += kGearC[4] * delta;
+                q5[i] += kGearC[5] * delta;
+                const double vi = n1 * scale;
+                w[i] = vi;
+                not_finite |= !(n0 * 0.0 + vi * 0.0 == 0.0);
               }
-              return z;
+              return not_finite ? 1.0 : 0.0;
             }) == 0.0;
   apply_prescribed(system, t_);
   ++steps_;
@@ -318,13 +340,13 @@ void VelocityVerlet::step(System& system) {
   system.prescribe(t_, q_, v_est_, a_);
   system.accelerations(t_, q_, v_est_, a_);
   finite_ = sum_over_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
-              double z = 0;
-#pragma omp simd reduction(+ : z)
+              int not_finite = 0;
+#pragma omp simd reduction(| : not_finite)
               for (std::size_t i = first; i < last; ++i) {
                 v[i] += h * a[i];  // half kick
-                z += q[i] * 0.0 + v[i] * 0.0;  // (0 exactly while q and v are finite)
+                not_finite |= !(q[i] * 0.0 + v[i] * 0.0 == 0.0);  // (0 exactly while q and v are finite)
               }
-              return z;
+              return not_finite ? 1.0 : 0.0;
             }) == 0.0;
   const auto fixed = system.prescribed();
   if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
