@@ -233,6 +233,51 @@ void Gear5::apply_prescribed(const System& system, double t) {
   }
 }
 
+namespace {
+// Gear's predictor and corrector on the coordinates [first, last). The arrays do not overlap (restrict), and
+// each value is read once into a local, so no store forces a reload and the loops vectorise.
+// Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders; v = r1/dt.
+void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
+                   double* __restrict r2, double* __restrict r3, double* __restrict r4,
+                   const double* __restrict r5, double* __restrict v, double inv_dt) {
+#pragma omp simd
+  for (std::size_t i = first; i < last; ++i) {
+    const double d1 = r1[i], d2 = r2[i], d3 = r3[i], d4 = r4[i], d5 = r5[i];
+    r0[i] += d1 + d2 + d3 + d4 + d5;
+    const double n1 = d1 + (2 * d2 + 3 * d3 + 4 * d4 + 5 * d5);
+    r1[i] = n1;
+    r2[i] = d2 + (3 * d3 + 6 * d4 + 10 * d5);
+    r3[i] = d3 + (4 * d4 + 10 * d5);
+    r4[i] = d4 + 5 * d5;
+    v[i] = n1 * inv_dt;
+  }
+}
+
+// Corrector, from the accelerations a at the predicted state; returns whether a corrected q or v is not
+// finite (q·0 + v·0 is 0 exactly when both are: an integer reduction, which the vectoriser takes where an
+// `omp simd reduction` on a double inside the caller's lambda kept the loop scalar).
+int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
+                  double* __restrict r2, double* __restrict r3, double* __restrict r4, double* __restrict r5,
+                  double* __restrict v, const double* __restrict a, double half_dt2, double inv_dt) {
+  int not_finite = 0;
+#pragma omp simd reduction(| : not_finite)
+  for (std::size_t i = first; i < last; ++i) {
+    const double delta = half_dt2 * a[i] - r2[i];
+    const double n0 = r0[i] + kGearC[0] * delta, n1 = r1[i] + kGearC[1] * delta;
+    r0[i] = n0;
+    r1[i] = n1;
+    r2[i] += kGearC[2] * delta;
+    r3[i] += kGearC[3] * delta;
+    r4[i] += kGearC[4] * delta;
+    r5[i] += kGearC[5] * delta;
+    const double vi = n1 * inv_dt;
+    v[i] = vi;
+    not_finite |= !(n0 * 0.0 + vi * 0.0 == 0.0);
+  }
+  return not_finite;
+}
+}  // namespace
+
 void Gear5::step(System& system) {
   double* const r0 = r_[0].data();
   double* const r1 = r_[1].data();
@@ -243,62 +288,15 @@ void Gear5::step(System& system) {
   double* const v = v_.data();
   const double* const a = a_.data();
   const double inv_dt = 1.0 / dt_;
-  // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders. (In each loop the arrays
-  // are restrict pointers and every value is read once into a local: the stores then force no reloads.)
   for_coordinate_ranges(n_, system.coordinate_blocks(), [=](std::size_t first, std::size_t last) {
-    double* __restrict q0 = r0;
-    double* __restrict q1 = r1;
-    double* __restrict q2 = r2;
-    double* __restrict q3 = r3;
-    double* __restrict q4 = r4;
-    const double* __restrict q5 = r5;
-    double* __restrict w = v;
-    const double scale = inv_dt;
-#pragma omp simd
-    for (std::size_t i = first; i < last; ++i) {
-      const double d1 = q1[i], d2 = q2[i], d3 = q3[i], d4 = q4[i], d5 = q5[i];
-      q0[i] += d1 + d2 + d3 + d4 + d5;
-      const double n1 = d1 + (2 * d2 + 3 * d3 + 4 * d4 + 5 * d5);
-      q1[i] = n1;
-      q2[i] = d2 + (3 * d3 + 6 * d4 + 10 * d5);
-      q3[i] = d3 + (4 * d4 + 10 * d5);
-      q4[i] = d4 + 5 * d5;
-      w[i] = n1 * scale;
-    }
+    gear5_predict(first, last, r0, r1, r2, r3, r4, r5, v, inv_dt);
   });
   t_ += dt_;
   apply_prescribed(system, t_);
   system.accelerations(t_, r_[0], v_, a_);
-  // Corrector.
   const double half_dt2 = 0.5 * dt_ * dt_;
-  // (and whether q and v are finite: q·0 + v·0 is 0 exactly then, NaN otherwise; an integer reduction, which
-  // the vectoriser takes where `omp simd reduction` on a double in this lambda kept the loop scalar)
   finite_ = sum_over_coordinate_ranges(n_, system.coordinate_blocks(), [=](std::size_t first, std::size_t last) {
-              double* __restrict q0 = r0;
-              double* __restrict q1 = r1;
-              double* __restrict q2 = r2;
-              double* __restrict q3 = r3;
-              double* __restrict q4 = r4;
-              double* __restrict q5 = r5;
-              double* __restrict w = v;
-              const double* __restrict acc = a;
-              const double h2 = half_dt2, scale = inv_dt;
-              int not_finite = 0;
-#pragma omp simd reduction(| : not_finite)
-              for (std::size_t i = first; i < last; ++i) {
-                const double delta = h2 * acc[i] - q2[i];
-                const double n0 = q0[i] + kGearC[0] * delta, n1 = q1[i] + kGearC[1] * delta;
-                q0[i] = n0;
-                q1[i] = n1;
-                q2[i] += kGearC[2] * delta;
-                q3[i] += kGearC[3] * delta;
-                q4[i] += kGearC[4] * delta;
-                q5[i] += kGearC[5] * delta;
-                const double vi = n1 * scale;
-                w[i] = vi;
-                not_finite |= !(n0 * 0.0 + vi * 0.0 == 0.0);
-              }
-              return not_finite ? 1.0 : 0.0;
+              return gear5_correct(first, last, r0, r1, r2, r3, r4, r5, v, a, half_dt2, inv_dt) ? 1.0 : 0.0;
             }) == 0.0;
   apply_prescribed(system, t_);
   ++steps_;
