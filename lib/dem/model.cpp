@@ -120,21 +120,20 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
         if (term != Term::beams) contact_block_powers(contacts_, contact_term_of(term), count, mine);
       add_contact_forces(contacts_, count, bodies_.n, q, force_, this_thread_range(bodies_.n));
     }
-    // The accelerations, and in the same pass whether every force is finite (F·0 is 0 exactly then; an integer
-    // reduction: `omp simd reduction` on a double kept this loop scalar).
-    int not_finite = 0;
+    // The accelerations, and in the same pass whether every force is finite.
+    int bad = 0;
     this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
       double* __restrict out = acc;
       const double* __restrict f = force;
       const double* __restrict w = inv_mass;
-#pragma omp simd reduction(| : not_finite)
+#pragma omp simd reduction(| : bad)
       for (std::size_t k = first; k < last; ++k) {
         const double fk = f[k];
         out[k] = fk * w[k];
-        not_finite |= !(fk * 0.0 == 0.0);
+        bad |= not_finite(fk);
       }
     });
-    zero_.mine() = not_finite ? 1.0 : 0.0;
+    zero_.mine() = bad ? 1.0 : 0.0;
   });
   if (contact_list) {
     for (const Term term : terms_) {

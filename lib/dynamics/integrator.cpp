@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/finite.hpp"
 #include "core/parallel.hpp"
 
 namespace frac::dynamics {
@@ -254,13 +255,12 @@ void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, d
 }
 
 // Corrector, from the accelerations a at the predicted state; returns whether a corrected q or v is not
-// finite (q·0 + v·0 is 0 exactly when both are: an integer reduction, which the vectoriser takes where an
-// `omp simd reduction` on a double inside the caller's lambda kept the loop scalar).
+// finite (core/finite.hpp).
 int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
                   double* __restrict r2, double* __restrict r3, double* __restrict r4, double* __restrict r5,
                   double* __restrict v, const double* __restrict a, double half_dt2, double inv_dt) {
-  int not_finite = 0;
-#pragma omp simd reduction(| : not_finite)
+  int bad = 0;
+#pragma omp simd reduction(| : bad)
   for (std::size_t i = first; i < last; ++i) {
     const double delta = half_dt2 * a[i] - r2[i];
     const double n0 = r0[i] + kGearC[0] * delta, n1 = r1[i] + kGearC[1] * delta;
@@ -272,9 +272,9 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
     r5[i] += kGearC[5] * delta;
     const double vi = n1 * inv_dt;
     v[i] = vi;
-    not_finite |= !(n0 * 0.0 + vi * 0.0 == 0.0);
+    bad |= not_finite(n0) | not_finite(vi);
   }
-  return not_finite;
+  return bad;
 }
 }  // namespace
 
@@ -338,13 +338,13 @@ void VelocityVerlet::step(System& system) {
   system.prescribe(t_, q_, v_est_, a_);
   system.accelerations(t_, q_, v_est_, a_);
   finite_ = sum_over_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
-              int not_finite = 0;
-#pragma omp simd reduction(| : not_finite)
+              int bad = 0;
+#pragma omp simd reduction(| : bad)
               for (std::size_t i = first; i < last; ++i) {
                 v[i] += h * a[i];  // half kick
-                not_finite |= !(q[i] * 0.0 + v[i] * 0.0 == 0.0);  // (0 exactly while q and v are finite)
+                bad |= not_finite(q[i]) | not_finite(v[i]);
               }
-              return not_finite ? 1.0 : 0.0;
+              return bad ? 1.0 : 0.0;
             }) == 0.0;
   const auto fixed = system.prescribed();
   if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
