@@ -253,16 +253,37 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
   const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), bodies_->length_scale, hint);
   pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
   if (pair.overlapping) {
-    geometry_[p] = {geo.point.x(), geo.point.y(), geo.normal.x(), geo.normal.y(), geo.area,
-                    geo.kind == geometry::ContactGeometry::Kind::enclosed, geo.distinct_crossings > 2};
-    pair_state_[p] = PairState::overlapping;
+    const PairContact contact{geo.point.x(), geo.point.y(), geo.normal.x(), geo.normal.y(), geo.area,
+                              geo.kind == geometry::ContactGeometry::Kind::enclosed, geo.distinct_crossings > 2};
+    if (direct_) {
+      put_contact(*direct_, static_cast<std::size_t>(direct_block_.count++), pair, contact);
+      direct_block_.enclosed += contact.enclosed;
+      direct_block_.multi_crossing += contact.multi_crossing;
+    } else {
+      geometry_[p] = contact;
+      pair_state_[p] = PairState::overlapping;
+    }
   }
+}
+
+// Entry k of the list: the contact of `pair`, whose geometry is `geo`.
+void ContactSearch::put_contact(ContactList& out, std::size_t k, const NeighbourPair& pair,
+                                const PairContact& geo) const {
+  out.i[k] = pair.i;
+  out.j[k] = pair.j;
+  out.rx[k] = geo.rx;
+  out.ry[k] = geo.ry;
+  out.nx[k] = geo.nx;
+  out.ny[k] = geo.ny;
+  out.area[k] = geo.area;
+  out.inv_lc[k] = 0.5 * (inv_diameter_[static_cast<std::size_t>(pair.i)] + inv_diameter_[static_cast<std::size_t>(pair.j)]);
+  out.fn[k] = 0.0;
+  out.pair_force[k] = {0.0, 0.0};
 }
 
 // The block's contacts, entries [offset, offset + count) of the list, in pair order from pair `first` on (the
 // first overlapping pair at or after it is contact `offset`), and the block's diagnostics.
 void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& out) {
-  const double* inv_d = inv_diameter_.data();
   const PairState* state = pair_state_.data();
   const std::size_t pairs = neighbours_.size();
   auto k = static_cast<std::size_t>(block.offset);
@@ -281,18 +302,8 @@ void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& 
     }
     for (std::size_t s = 0; s < found && k < last; ++s, ++k) {
       const auto q = static_cast<std::size_t>(overlapping[s]);
-      const auto& geo = geometry_[q];
-      const auto& pair = neighbours_[q];
-      out.i[k] = pair.i;
-      out.j[k] = pair.j;
-      out.rx[k] = geo.rx;
-      out.ry[k] = geo.ry;
-      out.nx[k] = geo.nx;
-      out.ny[k] = geo.ny;
-      out.area[k] = geo.area;
-      out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
-      out.fn[k] = 0.0;
-      out.pair_force[k] = {0.0, 0.0};
+      const PairContact& geo = geometry_[q];
+      put_contact(out, k, neighbours_[q], geo);
       enclosed += geo.enclosed;
       multi_crossing += geo.multi_crossing;
     }
@@ -357,11 +368,21 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const std::size_t pairs = neighbours_.size();
   // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread takes
   // the pairs of its cells first, then helps the others.
+  // A team of one tests the pairs in order: each contact goes straight to its entry in the list (no slot per
+  // pair, no second pass), the same list.
+  const bool direct = nt == 1;
+  direct_ = direct ? &out : nullptr;
+  direct_block_ = Block{};
   std::int64_t candidates = 0;
   pair_schedule_.run(64, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p) candidates += test_pair(p, x, y, slack);
   });
   candidates_.mine() = candidates;
+  if (direct) {
+    block = direct_block_;
+    out.block[t] = {0, static_cast<std::size_t>(block.count)};
+    return;
+  }
 #pragma omp barrier
   // The list in pair order, the same whatever the thread count, cut into equal blocks, one per thread: every
   // thread counts the overlapping pairs (one byte per pair, vectorised: cheaper than another barrier) and

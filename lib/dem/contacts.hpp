@@ -160,6 +160,9 @@ class ContactSearch {
   };
   void fill_contacts(std::size_t first, Block& block, ContactList& out);
   std::vector<Block> blocks_;  // per thread
+  // A team of one fills the list as it tests the pairs: into this list (null: a larger team), this block.
+  ContactList* direct_ = nullptr;
+  Block direct_block_;
   HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
@@ -169,6 +172,7 @@ class ContactSearch {
     bool enclosed, multi_crossing;  // kind enclosed; more than two distinct crossings
   };
   std::vector<PairContact> geometry_;  // one slot per neighbour pair, set where overlapping
+  void put_contact(ContactList& out, std::size_t k, const NeighbourPair& pair, const PairContact& geo) const;
 };
 
 struct ContactParameters {
