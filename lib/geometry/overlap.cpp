@@ -358,7 +358,7 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   const std::size_t cached = cache ? cache->size : 0;
   if (cache) cache->size = 0;  // until a regular overlap is found
   if (n < 3 || m < 3) return {};
-  const double eps_len = kCrossingMergeTolerance * g;
+  const double eps_len = crossing_merge_tolerance(g, pi[0], pj[0]);
   const double tol = 4 * eps_len;  // the margins of a regular overlap
   const Vec2 o = pi[0];
   OverlapFrame f({pi, pj, o.x(), o.y(), static_cast<int>(n), static_cast<int>(m), tol, tol * tol, {}}, o, cj - ci,

@@ -4,6 +4,7 @@
 // unit normal n. Allocation-free: all work is done in fixed-capacity buffers on the stack.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -18,10 +19,23 @@ inline constexpr std::size_t kMaxContactPolygonVertices = 32;
 // vertices; the margin absorbs near-duplicate vertices made by round-off.
 inline constexpr std::size_t kMaxOverlapVertices = 4 * kMaxContactPolygonVertices;
 
-// Tolerances in units of the length scale g (the cell size): eps_A = kOverlapAreaTolerance * g^2,
-// eps_L = kCrossingMergeTolerance * g.
+// Tolerances in units of the length scale g (the cell size): eps_A = kOverlapAreaTolerance * g^2, and
+// eps_L = kCrossingMergeTolerance * g, or kCrossingMergeUlps times the largest coordinate of the two polygons'
+// first vertices where that is larger (crossing_merge_tolerance). eps_L only tames round-off (touching vertices,
+// collinear edges). A world coordinate x carries a few ulps of round-off, 2^-52 |x| each; eps_L stays 16 times
+// above that however far from the origin the cells lie: 1e-12 g up to |x| = 70 g, then 2^-46 |x|. (The physics
+// note suggests "about 1e-9 g". With 1e-9 g, every thin sliver between bonded neighbours turned against each
+// other by less than ~4e-9 rad had an edge shorter than the margin of a regular overlap, 4 eps_L, and was
+// clipped: a third of the overlaps of the 10^4-cell benchmark, half its contact geometry's time.)
 inline constexpr double kOverlapAreaTolerance = 1e-12;
-inline constexpr double kCrossingMergeTolerance = 1e-9;
+inline constexpr double kCrossingMergeTolerance = 1e-12;
+inline constexpr double kCrossingMergeUlps = 0x1p-46;  // 64 ulps
+// eps_L (m) for polygons whose first vertices are a and b (m), with length scale g (m).
+inline double crossing_merge_tolerance(double g, const Vec2& a, const Vec2& b) {
+  const double extent =
+      std::max(std::max(std::abs(a.x()), std::abs(a.y())), std::max(std::abs(b.x()), std::abs(b.y())));
+  return std::max(kCrossingMergeTolerance * g, kCrossingMergeUlps * extent);
+}
 
 // The overlap polygon P_i ∩ P_j (counter-clockwise), in the caller's coordinates.
 struct OverlapPolygon {

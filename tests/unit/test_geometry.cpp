@@ -529,11 +529,27 @@ TEST(Overlap, CollinearOverlappingEdges) {
   EXPECT_NEAR(t.area, 1e-4, 1e-15);
   expect_same_pair(t.p1, t.p2, Vec2(0.0, 1.0 - 0.5e-4), Vec2(1.0, 1.0 - 0.5e-4), 1e-15);
   EXPECT_NEAR((t.normal - Vec2(0, 1)).norm(), 0.0, 1e-15);
-  // The same, with the sides off by 1e-12 (near-collinear, within eps_L): same answer to 1e-12.
-  const auto u = overlap(pi, rect(1e-12, 1.0 - 1e-4, 1, 1));
+  // The same, with the sides off by 1e-13 (near-collinear, within eps_L = 1e-12 g, 500 times the round-off of
+  // coordinates ~1): the same answer to 1e-11.
+  const auto u = overlap(pi, rect(1e-13, 1.0 - 1e-4, 1, 1));
   EXPECT_EQ(u.kind, Kind::line);
   EXPECT_NEAR((u.normal - Vec2(0, 1)).norm(), 0.0, 1e-11);
   EXPECT_NEAR((u.point - Vec2(0.5, 1.0 - 0.5e-4)).norm(), 0.0, 1e-11);
+  // Off by 1e-10 instead: well beyond eps_L near the origin, so the boundaries cross at j's corner (the contact
+  // line from (1e-10, 1 - 1e-4) to (1, 1), turned by 1e-4 rad)...
+  const auto w = overlap(pi, rect(1e-10, 1.0 - 1e-4, 1, 1));
+  EXPECT_EQ(w.kind, Kind::line);
+  EXPECT_GT((w.normal - Vec2(0, 1)).norm(), 0.5e-4);
+  // ...but 1e6 g from the origin, where the coordinates' round-off is ~1e-10 (ulp(1e6) = 1.2e-10), an offset of
+  // 1e-10 is round-off: eps_L grows to 64 ulps of the coordinates, 1.4e-8, and the sides count as collinear.
+  const Vec2 far(1e6, -1e6);
+  Polygon pi_far = pi, up_far = rect(1e-10, 1.0 - 1e-4, 1, 1);
+  for (Vec2& p : pi_far) p += far;
+  for (Vec2& p : up_far) p += far;
+  const auto x = convex_overlap(pi_far, up_far, geo::centroid(pi_far), geo::centroid(up_far), 1.0);
+  EXPECT_EQ(x.kind, Kind::line);
+  EXPECT_NEAR((x.normal - Vec2(0, 1)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((x.point - far - Vec2(0.5, 1.0 - 0.5e-4)).norm(), 0.0, 1e-9);
   // A corner region shared: small square in P_i's corner but sticking out on one side.
   const auto v = overlap(pi, rect(0.5, 0, 1, 0.5));
   expect_well_formed(v, Vec2(0.5, 0.5), Vec2(1.0, 0.25));
@@ -837,9 +853,9 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
   }
   // The unmoved side-by-side squares put their crossings at the middles of the shared runs.
   EXPECT_EQ(shared_runs, 2);
-  // A corner of j 1e-12 inside i's right side: the overlap edge from it to the crossing is shorter than tol,
-  // which makes it shared whatever the angles (the crossing moves to the middle of that edge).
-  const Polygon pj = {Vec2(1 - 1e-6, 0.6), Vec2(1 - 1e-12, 0.3), Vec2(2.4, 0.25), Vec2(2.4, 0.65)};
+  // A corner of j 1e-13 inside i's right side: the overlap edge from it to the crossing is shorter than eps_L
+  // (1e-12 here), which makes it shared whatever the angles (the crossing moves to the middle of that edge).
+  const Polygon pj = {Vec2(1 - 1e-6, 0.6), Vec2(1 - 1e-13, 0.3), Vec2(2.4, 0.25), Vec2(2.4, 0.65)};
   const Vec2 ci = geo::centroid(base_i), cj = geo::centroid(pj);
   const auto hint = facing_hint(base_i, pj);
   ASSERT_EQ(hint.edge_j, 0u);
@@ -848,8 +864,8 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
   const auto fast = convex_overlap(base_i, pj, ci, cj, 1.0, hint);
   ASSERT_EQ(plain.kind, Kind::line);
   EXPECT_TRUE(same_bits(fast, plain));
-  // The crossing is the middle of the short edge, half of 1e-12 in from the side.
-  EXPECT_EQ(std::min(plain.p1.x(), plain.p2.x()), 0.5 * ((1 - 1e-12) + 1.0));
+  // The crossing is the middle of the short edge, half of 1e-13 in from the side.
+  EXPECT_EQ(std::min(plain.p1.x(), plain.p2.x()), 0.5 * ((1 - 1e-13) + 1.0));
 }
 
 // A pair's cache of the lines of its last overlap (the contact search keeps one per neighbour pair) changes the
