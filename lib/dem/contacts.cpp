@@ -276,7 +276,8 @@ void ContactSearch::put_contact(ContactList& out, std::size_t k, const Neighbour
   out.nx[k] = geo.nx;
   out.ny[k] = geo.ny;
   out.area[k] = geo.area;
-  out.inv_lc[k] = 0.5 * (inv_diameter_[static_cast<std::size_t>(pair.i)] + inv_diameter_[static_cast<std::size_t>(pair.j)]);
+  const double* inv_d = inv_diameter_.data();
+  out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
   out.fn[k] = 0.0;
   out.pair_force[k] = {0.0, 0.0};
 }
@@ -367,9 +368,8 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
   const std::size_t pairs = neighbours_.size();
   // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread takes
-  // the pairs of its cells first, then helps the others.
-  // A team of one tests the pairs in order: each contact goes straight to its entry in the list (no slot per
-  // pair, no second pass), the same list.
+  // the pairs of its cells first, then helps the others. A team of one tests the pairs in order, so each contact
+  // goes straight to its entry in the list instead (no slot, no second pass): the same list.
   const bool direct = nt == 1;
   direct_ = direct ? &out : nullptr;
   direct_block_ = Block{};
