@@ -312,8 +312,11 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
     }
   });
   if (!any) return;  // most steps: nothing broke, the list stays as it is
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < count; ++k) {
+  // The entries before the first broken beam stay where they are.
+  std::size_t first = 0;
+  while (verdict[first].mode == 0) ++first;
+  std::size_t kept = first;
+  for (std::size_t k = first; k < count; ++k) {
     const auto b = static_cast<std::size_t>(active_.beam[k]);
     if (verdict[k].mode == 0) {
       active_.copy_entry(kept++, k);
