@@ -379,6 +379,7 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   });
   candidates_.mine() = candidates;
   if (direct) {
+    direct_ = nullptr;  // (no pointer to the list kept past the tests)
     block = direct_block_;
     out.block[t] = {0, static_cast<std::size_t>(block.count)};
     return;
