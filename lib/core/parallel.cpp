@@ -32,6 +32,21 @@ void HomeFirstSchedule::reset(std::size_t items, std::size_t nt) {
   }
 }
 
+PartLayout::PartLayout(std::size_t n, std::size_t blocks, std::size_t threads)
+    : n_(n), blocks_(blocks == 0 || n % blocks != 0 ? 1 : blocks), threads_(threads == 0 ? 1 : threads) {
+  len_ = n_ / blocks_;
+  gap_ = threads_ > 1 ? kPartGap : 0;
+}
+
+std::size_t PartLayout::index(std::size_t i) const {
+  if (gap_ == 0) return i;
+  const std::size_t b = i / len_, j = i % len_;
+  // The thread whose part of the block holds j (static_range: the first len % threads parts one longer).
+  const std::size_t q = len_ / threads_, longer = len_ % threads_;
+  const std::size_t t = j < longer * (q + 1) ? j / (q + 1) : longer + (j - longer * (q + 1)) / q;
+  return i + gap_ * (b * threads_ + t);
+}
+
 void set_threads(int requested) {
   omp_set_num_threads(requested > 0 ? requested : omp_get_num_procs());
   // Every thread of the pool (the caller among them) in the simulation's floating-point mode.

@@ -66,13 +66,14 @@ inline double sum_of_blocks(const double* out, std::size_t count, std::size_t bl
 // (Never call one from inside `single` or `masked`: the others would not reach its barriers.)
 // as_team runs `body` as a team: on the region it is called from, or in a new one when `worth` it (above the
 // sizes where threads pay off), so that a caller outside need not know.
+// (Not worth it, or one thread: no region at all, whose start and end cost a microsecond even for one thread.)
 template <class Body>
 void as_team(bool worth, Body&& body) {
-  if (in_parallel()) {
+  if (in_parallel() || !worth || max_threads() == 1) {
     body();
     return;
   }
-#pragma omp parallel if (worth)
+#pragma omp parallel
   body();
 }
 
@@ -144,6 +145,40 @@ void this_thread_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& ran
   const Range r = static_range(len, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
   for (std::size_t b = 0; b < blocks; ++b) range(b * len + r.first, b * len + r.last);
 }
+
+// An array only per-coordinate loops touch (gear5's higher derivatives) laid out with the threads' parts apart.
+// Two cores writing within a kilobyte of each other, either side of a split, each pull the other's lines with
+// their prefetchers: on this machine the loops then run 2-4 times slower than on arrays kept apart
+// (docs/benchmarks.md, session 17). The layout keeps the coordinates in order and shifts the part of thread t of
+// block b (this_thread_coordinate_ranges' split for a team of `threads`) by kPartGap·(b·threads + t) entries; a
+// team of one needs no gap.
+class PartLayout {
+ public:
+  static constexpr std::size_t kPartGap = 256;  // doubles: 2 KB
+  PartLayout() = default;
+  PartLayout(std::size_t n, std::size_t blocks, std::size_t threads);
+  std::size_t threads() const { return threads_; }
+  std::size_t size() const { return n_ + gap_ * (blocks_ * threads_ - 1); }  // entries to allocate
+  // Where coordinate i lives.
+  std::size_t index(std::size_t i) const;
+  // Inside a parallel region: range(first, last, shift) on the parts of this thread (of the layout's threads t
+  // with t ≡ thread_index() modulo the team size: its own, in a team of `threads`), coordinate i of [first,
+  // last) at entry shift + i. Outside one: on every part.
+  template <class Body>
+  void this_thread_parts(Body&& range) const {
+    if (gap_ == 0 && thread_count() == 1) {
+      range(std::size_t{0}, n_, std::size_t{0});
+      return;
+    }
+    for (auto t = static_cast<std::size_t>(thread_index()); t < threads_; t += static_cast<std::size_t>(thread_count())) {
+      const Range r = static_range(len_, t, threads_);
+      for (std::size_t b = 0; b < blocks_; ++b) range(b * len_ + r.first, b * len_ + r.last, gap_ * (b * threads_ + t));
+    }
+  }
+
+ private:
+  std::size_t n_ = 0, blocks_ = 1, len_ = 0, threads_ = 1, gap_ = 0;
+};
 
 // A per-coordinate loop: range(first, last) on contiguous ranges that cover [0, n) once, split among the
 // threads as above when n is above kMinParallelCoordinates, in one call otherwise.

@@ -253,10 +253,19 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
   const auto geo = geometry::convex_overlap(pi, pj, Vec2(x[i], y[i]), Vec2(x[j], y[j]), bodies_->length_scale, hint);
   pair.overlapping = geo.kind != geometry::ContactGeometry::Kind::none;
   if (pair.overlapping) {
-    const PairContact contact{geo.point.x(), geo.point.y(), geo.normal.x(), geo.normal.y(), geo.area,
-                              geo.kind == geometry::ContactGeometry::Kind::enclosed, geo.distinct_crossings > 2};
+    const double* inv_d = inv_diameter_.data();
+    const PairContact contact{geo.point.x(),
+                              geo.point.y(),
+                              geo.normal.x(),
+                              geo.normal.y(),
+                              geo.area,
+                              geo.kind == geometry::ContactGeometry::Kind::enclosed,
+                              geo.distinct_crossings > 2,
+                              pair.i,
+                              pair.j,
+                              0.5 * (inv_d[pair.i] + inv_d[pair.j])};
     if (direct_) {
-      put_contact(*direct_, static_cast<std::size_t>(direct_block_.count++), pair, contact);
+      put_contact(*direct_, static_cast<std::size_t>(direct_block_.count++), contact);
       direct_block_.enclosed += contact.enclosed;
       direct_block_.multi_crossing += contact.multi_crossing;
     } else {
@@ -266,18 +275,16 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
   }
 }
 
-// Entry k of the list: the contact of `pair`, whose geometry is `geo`.
-void ContactSearch::put_contact(ContactList& out, std::size_t k, const NeighbourPair& pair,
-                                const PairContact& geo) const {
-  out.i[k] = pair.i;
-  out.j[k] = pair.j;
-  out.rx[k] = geo.rx;
-  out.ry[k] = geo.ry;
-  out.nx[k] = geo.nx;
-  out.ny[k] = geo.ny;
-  out.area[k] = geo.area;
-  const double* inv_d = inv_diameter_.data();
-  out.inv_lc[k] = 0.5 * (inv_d[pair.i] + inv_d[pair.j]);
+// Entry k of the list: `contact`.
+void ContactSearch::put_contact(ContactList& out, std::size_t k, const PairContact& contact) {
+  out.i[k] = contact.i;
+  out.j[k] = contact.j;
+  out.rx[k] = contact.rx;
+  out.ry[k] = contact.ry;
+  out.nx[k] = contact.nx;
+  out.ny[k] = contact.ny;
+  out.area[k] = contact.area;
+  out.inv_lc[k] = contact.inv_lc;
   out.fn[k] = 0.0;
   out.pair_force[k] = {0.0, 0.0};
 }
@@ -304,7 +311,7 @@ void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& 
     for (std::size_t s = 0; s < found && k < last; ++s, ++k) {
       const auto q = static_cast<std::size_t>(overlapping[s]);
       const PairContact& geo = geometry_[q];
-      put_contact(out, k, neighbours_[q], geo);
+      put_contact(out, k, geo);
       enclosed += geo.enclosed;
       multi_crossing += geo.multi_crossing;
     }

@@ -167,12 +167,17 @@ class ContactSearch {
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)
-  struct PairContact {  // what the list keeps of an overlapping pair's geometry (48 bytes; ContactGeometry has 96)
+  // An overlapping pair's entry of the list, whole in one cache line (ContactGeometry has 96 bytes): the thread
+  // that fills the entry reads this line only, not the pair's nor the cells' (written or read by the other
+  // thread: lines that would cross between the cores).
+  struct alignas(64) PairContact {
     double rx, ry, nx, ny, area;
     bool enclosed, multi_crossing;  // kind enclosed; more than two distinct crossings
+    std::int32_t i, j;
+    double inv_lc;  // 1/L_c of the pair
   };
   std::vector<PairContact> geometry_;  // one slot per neighbour pair, set where overlapping
-  void put_contact(ContactList& out, std::size_t k, const NeighbourPair& pair, const PairContact& geo) const;
+  static void put_contact(ContactList& out, std::size_t k, const PairContact& contact);
 };
 
 struct ContactParameters {

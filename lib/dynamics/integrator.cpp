@@ -196,16 +196,18 @@ void Gear5::start(System& system, double t0, double dt, std::span<const double> 
   t_ = t0;
   dt_ = dt;
   steps_ = 0;
-  for (auto& r : r_) r.assign(n_, 0.0);
+  layout_ = PartLayout(n_, system.coordinate_blocks(),
+                       n_ > kMinParallelCoordinates ? static_cast<std::size_t>(max_threads()) : 1);
+  r_[0].assign(q0.begin(), q0.end());
+  for (int k = 1; k < 6; ++k) r_[k].assign(layout_.size(), 0.0);
   v_.assign(v0.begin(), v0.end());
   a_.assign(n_, 0.0);
-  std::copy(q0.begin(), q0.end(), r_[0].begin());
   system.prescribe(t_, r_[0], v_, a_);
   system.accelerations(t_, r_[0], v_, a_);
   system.prescribe(t_, r_[0], v_, a_);
   for (std::size_t i = 0; i < n_; ++i) {
-    r_[1][i] = dt * v_[i];
-    r_[2][i] = 0.5 * dt * dt * a_[i];
+    r(1, i) = dt * v_[i];
+    r(2, i) = 0.5 * dt * dt * a_[i];
   }
 }
 
@@ -214,13 +216,13 @@ void Gear5::start_exact(System& system, double t0, double dt, const std::vector<
   double scale = dt * dt / 2;
   for (int k = 3; k <= 5; ++k) {
     scale *= dt / k;
-    for (std::size_t i = 0; i < n_; ++i) r_[k][i] = scale * derivs.at(static_cast<std::size_t>(k))[i];
+    for (std::size_t i = 0; i < n_; ++i) r(k, i) = scale * derivs.at(static_cast<std::size_t>(k))[i];
   }
 }
 
 void Gear5::set_velocity(std::size_t i, double value) {
   v_[i] = value;
-  r_[1][i] = dt_ * value;
+  r(1, i) = dt_ * value;
 }
 
 void Gear5::apply_prescribed(const System& system, double t) {
@@ -228,9 +230,9 @@ void Gear5::apply_prescribed(const System& system, double t) {
   if (fixed.empty()) return;
   system.prescribe(t, r_[0], v_, a_);
   for (std::size_t i : fixed) {
-    r_[1][i] = dt_ * v_[i];
-    r_[2][i] = 0.5 * dt_ * dt_ * a_[i];
-    r_[3][i] = r_[4][i] = r_[5][i] = 0.0;
+    r(1, i) = dt_ * v_[i];
+    r(2, i) = 0.5 * dt_ * dt_ * a_[i];
+    r(3, i) = r(4, i) = r(5, i) = 0.0;
   }
 }
 
@@ -288,16 +290,39 @@ void Gear5::step(System& system) {
   double* const v = v_.data();
   const double* const a = a_.data();
   const double inv_dt = 1.0 / dt_;
-  for_coordinate_ranges(n_, system.coordinate_blocks(), [=](std::size_t first, std::size_t last) {
-    gear5_predict(first, last, r0, r1, r2, r3, r4, r5, v, inv_dt);
-  });
+  // Each thread its parts of the coordinates (r_[1..5] shifted by the layout), in a team when the layout has
+  // more than one thread.
+  const PartLayout& layout = layout_;
+  const auto predict = [&] {
+    layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+      gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
+    });
+  };
+  if (layout.threads() > 1) {
+#pragma omp parallel
+    predict();
+  } else {
+    predict();
+  }
   t_ += dt_;
   apply_prescribed(system, t_);
   system.accelerations(t_, r_[0], v_, a_);
   const double half_dt2 = 0.5 * dt_ * dt_;
-  finite_ = sum_over_coordinate_ranges(n_, system.coordinate_blocks(), [=](std::size_t first, std::size_t last) {
-              return gear5_correct(first, last, r0, r1, r2, r3, r4, r5, v, a, half_dt2, inv_dt) ? 1.0 : 0.0;
-            }) == 0.0;
+  int bad = 0;
+  const auto correct = [&] {
+    int mine = 0;
+    layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+      mine |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
+    });
+    return mine;
+  };
+  if (layout.threads() > 1) {
+#pragma omp parallel reduction(| : bad)
+    bad |= correct();
+  } else {
+    bad = correct();
+  }
+  finite_ = bad == 0;
   apply_prescribed(system, t_);
   ++steps_;
 }

@@ -15,6 +15,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/parallel.hpp"
+
 namespace frac::dynamics {
 
 class System {
@@ -134,8 +136,12 @@ class Gear5 final : public Integrator {
 
  private:
   void apply_prescribed(const System& system, double t);
-  std::vector<double> r_[6];  // scaled derivatives r_k = dt^k/k! · d^k q/dt^k
+  // Scaled derivatives r_k = dt^k/k! · d^k q/dt^k: r_[0] = q in the system's layout, r_[1..5] (which only the
+  // step's loops touch) in layout_, the threads' parts apart (core/parallel.hpp: PartLayout).
+  std::vector<double> r_[6];
   std::vector<double> v_, a_;
+  PartLayout layout_;
+  double& r(int k, std::size_t i) { return r_[k][layout_.index(i)]; }
 };
 
 class VelocityVerlet final : public Integrator {

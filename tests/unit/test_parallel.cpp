@@ -83,6 +83,48 @@ TEST(Parallel, CoordinateRangesCoverEveryCoordinateOnceAlignedWithTheCells) {
   frac::set_threads(before);
 }
 
+// PartLayout: every coordinate is visited once, at the entry index() gives, distinct entries inside size(); in a
+// team of the layout's size each thread takes the cells the per-coordinate loops give it, and entries of
+// different threads' parts lie at least kPartGap apart; a team of another size still visits each once.
+TEST(Parallel, PartLayoutKeepsTheThreadsPartsApart) {
+  for (const std::size_t layout_threads : {1u, 2u, 3u}) {
+    for (const std::size_t cells : {1u, 2u, 5u, 1100u, 1103u}) {
+      for (const std::size_t blocks : {1u, 3u}) {
+        const std::size_t n = cells * blocks;
+        const frac::PartLayout layout(n, blocks, layout_threads);
+        for (const int team : {1, 2, 3}) {
+          std::vector<int> visits(n, 0), owner(n, -1);
+          std::vector<std::size_t> entry(n, 0);
+#pragma omp parallel num_threads(team)
+          layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t shift) {
+            for (std::size_t i = first; i < last; ++i) {
+              ++visits[i];
+              owner[i] = frac::thread_index();
+              entry[i] = shift + i;
+            }
+          });
+          std::vector<char> used(layout.size(), 0);
+          for (std::size_t i = 0; i < n; ++i) {
+            ASSERT_EQ(visits[i], 1) << n << " coordinates, team " << team << ", index " << i;
+            ASSERT_EQ(entry[i], layout.index(i)) << "index " << i;
+            ASSERT_LT(entry[i], layout.size());
+            ASSERT_FALSE(used[entry[i]]) << "entry " << entry[i] << " twice";
+            used[entry[i]] = 1;
+          }
+          if (static_cast<std::size_t>(team) != layout_threads) continue;
+          for (std::size_t i = 0; i < n; ++i) {
+            const frac::Range r = frac::static_range(cells, static_cast<std::size_t>(owner[i]), layout_threads);
+            EXPECT_TRUE(i % cells >= r.first && i % cells < r.last) << "coordinate " << i << ", thread " << owner[i];
+            if (i + 1 < n && owner[i + 1] != owner[i]) {
+              EXPECT_GE(entry[i + 1] - entry[i], frac::PartLayout::kPartGap) << "coordinates " << i << ", " << i + 1;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 // Every item runs once, whatever the thread count, the chunk and the cost of the items (a thread that finishes
 // its own takes the others'); with one thread, in order.
 TEST(Parallel, HomeFirstScheduleRunsEveryItemOnce) {
