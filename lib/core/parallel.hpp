@@ -88,6 +88,7 @@ class TeamSlots {
   }
   T& mine() { return slot_[static_cast<std::size_t>(thread_index())].value; }
   const T& operator[](std::size_t t) const { return slot_[t].value; }
+  T& operator[](std::size_t t) { return slot_[t].value; }
 
  private:
   struct alignas(64) Slot {

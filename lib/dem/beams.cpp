@@ -192,11 +192,14 @@ void Beams::each_block(std::span<const double> q, const BeamTable& t, std::size_
 template <BeamResponsePart P, class Use>
 void Beams::each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                           Use&& use) const {
+  const bool some_broken = &t == &active_ && broken_in_active_ > 0;
   each_block(q, t, first, last, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
     respond_block<P>(blk, count);
     for (std::size_t k = 0; k < count; ++k) {
       const auto b = static_cast<std::size_t>(t.beam[start + k]);
-      if (blk.near[k] != 0.0) {
+      if (some_broken && intact_[b] == 0) {
+        use(start + k, b, BeamResponse{});
+      } else if (blk.near[k] != 0.0) {
         BeamResponse r{};
         if constexpr (P == BeamResponsePart::forces) {
           r.fx = blk.fx[k];
@@ -285,48 +288,52 @@ void Beams::strains(std::span<const double> q, std::span<double> out) const {
 
 void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken) {
   const std::size_t count = active_.size();
-  if (verdict_.size() < count) verdict_.resize(count);
-  // The verdicts in parallel (each beam its own slot; in blocks, the bound that clears most beams as a vector
-  // loop, then the exact rule for the others), then the active list compacted in order: the same bits whatever
-  // the thread count.
-  Verdict* verdict = verdict_.data();
-  bool any = false;
+  const auto most = static_cast<std::size_t>(max_threads());
+  breaking_.reserve(most);
+  for (std::size_t t = 0; t < most; ++t) breaking_[t].reserve(count);  // (allocates only the first time)
+  // The verdicts in parallel (in blocks, the bound that clears most beams as a vector loop, then the exact rule
+  // for the others), each thread listing the entries of its part that break; then, in list order, the beams
+  // marked broken: the same bits whatever the thread count.
+  std::size_t teams = 1;
   as_team(count > kMinParallelItems, [&] {
     const Range mine = this_thread_range(count);
-    bool mine_any = false;
+    std::vector<Breaking>& out = breaking_.mine();
+    out.clear();
     each_block(q, active_, mine.first, mine.last, [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
       bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
       for (std::size_t k = 0; k < n; ++k) {
-        Verdict& v = verdict[start + k];
-        v.mode = 0;
         if (blk.near[k] != 0.0) continue;  // holds for sure (breaking_bound_holds)
         const auto b = static_cast<std::size_t>(active_.beam[start + k]);
+        if (intact_[b] == 0) continue;  // broke before, not yet out of the list
+        Verdict v{0, 0.0};
         v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
                                      blk.l0[k], stiffness(b), t_eps, t_theta, v.energy);
-        mine_any = mine_any || v.mode != 0;
+        if (v.mode != 0) out.push_back({start + k, v});
       }
     });
-    if (mine_any) {
-#pragma omp atomic write
-      any = true;
-    }
+    if (thread_index() == 0) teams = static_cast<std::size_t>(thread_count());
   });
-  if (!any) return;  // most steps: nothing broke, the list stays as it is
-  // The entries before the first broken beam stay where they are.
-  std::size_t first = 0;
-  while (verdict[first].mode == 0) ++first;
-  std::size_t kept = first;
-  for (std::size_t k = first; k < count; ++k) {
-    const auto b = static_cast<std::size_t>(active_.beam[k]);
-    if (verdict[k].mode == 0) {
-      active_.copy_entry(kept++, k);
-    } else {
+  for (std::size_t t = 0; t < teams; ++t) {
+    for (const Breaking& e : breaking_[t]) {
+      const auto b = static_cast<std::size_t>(active_.beam[e.entry]);
       intact_[b] = 0;
       unindex(b);
-      broken.push_back({static_cast<std::int64_t>(b), verdict[k].mode, verdict[k].energy});
+      broken.push_back({static_cast<std::int64_t>(b), e.verdict.mode, e.verdict.energy});
+      ++broken_in_active_;
     }
   }
+  if (broken_in_active_ * kCompactEvery > active_.size()) compact_active();
+}
+
+void Beams::compact_active() {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < active_.size(); ++k) {
+    if (intact_[static_cast<std::size_t>(active_.beam[k])] == 0) continue;
+    if (kept != k) active_.copy_entry(kept, k);
+    ++kept;
+  }
   active_.resize(kept);
+  broken_in_active_ = 0;
 }
 
 void Beams::remove(std::size_t b) {
@@ -340,6 +347,7 @@ void Beams::remove(std::size_t b) {
 void Beams::remove_all() {
   std::fill(intact_.begin(), intact_.end(), std::uint8_t{0});
   active_.resize(0);
+  broken_in_active_ = 0;
   index_cells();
 }
 

@@ -1,10 +1,11 @@
 #pragma once
-// All beams of a sample: per-beam data in arrays, the intact ones compacted into an active list (a
-// broken beam is never tested again), the force loop, the energy, and the breaking pass.
+// All beams of a sample: per-beam data in arrays, the intact ones in an active list (a broken beam is never
+// tested again), the force loop, the energy, and the breaking pass.
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "dem/beam.hpp"
 #include "dem/bodies.hpp"
 #include "mesh/cell_mesh.hpp"
@@ -26,9 +27,8 @@ class Beams {
   Beams(const mesh::CellMesh& mesh, const Material& material);
 
   std::size_t size() const { return all_.size(); }
-  std::size_t intact_count() const { return active_.size(); }
+  std::size_t intact_count() const { return active_.size() - broken_in_active_; }
   std::span<const std::uint8_t> intact() const { return intact_; }
-  std::span<const std::int32_t> active() const { return active_.beam; }
   std::int32_t cell_i(std::size_t b) const { return all_.i[b]; }
   std::int32_t cell_j(std::size_t b) const { return all_.j[b]; }
   BeamStiffness stiffness(std::size_t b) const { return {all_.alpha[b], all_.beta[b], all_.delta[b]}; }
@@ -56,6 +56,11 @@ class Beams {
   void remove(std::size_t b);
   // Marks every beam broken (a scene without beams: no cohesion, every cell its own fragment).
   void remove_all();
+  // Broken beams leave the active list in batches, not at every step a beam breaks (a serial pass over the
+  // list, whose entries the other threads hold in their caches): until then they stay in it, marked broken
+  // (intact()), their responses zero and uncomputed; the list is compacted once more than one entry in
+  // kCompactEvery is such a beam.
+  static constexpr std::size_t kCompactEvery = 32;
 
  private:
   // add_forces (add) or set_forces.
@@ -76,6 +81,7 @@ class Beams {
   // branch-free formula of a beam near its reference orientation as a vector loop over them (no library call,
   // no branch, no indirect load), then beam_response, one at a time, for the beams it does not cover (rotated
   // by more than π/8: the spinning fragments of an explosion). (beams.cpp only.)
+  // A broken beam still in the table (the active list between compactions) gets a zero response, uncomputed.
   template <BeamResponsePart P, class Use>
   void each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                      Use&& use) const;
@@ -112,7 +118,14 @@ class Beams {
     int mode;       // breaking_mode's
     double energy;  // elastic energy, J, when it breaks
   };
-  std::vector<Verdict> verdict_;  // per active beam, the breaking pass (filled in parallel)
+  // The breaking pass: each thread lists the entries of its part of the active list that break, in order.
+  struct Breaking {
+    std::size_t entry;
+    Verdict verdict;
+  };
+  TeamSlots<std::vector<Breaking>> breaking_;
+  std::size_t broken_in_active_ = 0;
+  void compact_active();
 };
 
 }  // namespace frac::dem

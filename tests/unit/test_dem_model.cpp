@@ -965,4 +965,63 @@ TEST(DemModel, BreakingPassGivesTheExactRuleOfEveryBeam) {
   frac::set_threads(before);
 }
 
+// Beams that break stay in the active list, marked broken, until enough have gathered (Beams::kCompactEvery):
+// meanwhile they give no force and no energy, count as broken, and never break again; after the compaction the
+// same. One cell pulled 10 % of a cell size away breaks a few of its beams, far fewer than a compaction needs.
+TEST(DemModel, BrokenBeamsWaitingForCompactionCarryNothing) {
+  const CellMesh mesh = rect_mesh(20, 14, 6);
+  const Material mat;
+  const std::size_t n = mesh.cells();
+  const std::vector<double> rest = jittered_state(mesh, 5, 0.002 * kG, 0.005, n + 1);  // nothing breaks here
+  const int before = frac::max_threads();
+  for (const int threads : {1, 2}) {
+    frac::set_threads(threads);
+    frac::dem::Beams beams(mesh, mat);
+    const std::size_t all = beams.intact_count();
+    std::vector<frac::dem::BeamBreak> broken;
+    for (std::size_t cell : {n / 3 + 4, 2 * n / 3 + 7}) {
+      std::vector<double> pulled = rest;
+      pulled[cell] += 0.1 * kG;
+      const std::size_t had = broken.size();
+      beams.break_beams(pulled, mat.t_eps, mat.t_theta, broken);
+      ASSERT_GT(broken.size(), had) << threads << " threads: the pulled cell broke none of its beams";
+      beams.break_beams(pulled, mat.t_eps, mat.t_theta, broken);  // the same state: nothing breaks again
+      ASSERT_LT(broken.size() * frac::dem::Beams::kCompactEvery, all) << "few enough to wait in the list";
+      EXPECT_EQ(beams.intact_count(), all - broken.size());
+      // Forces: exactly the sum over the intact beams; energy: the intact beams' energies, to round-off.
+      std::vector<double> f(3 * n, 0.0), expected(3 * n, 0.0);
+      beams.add_forces(rest, f);
+      double energy = 0;
+      for (std::size_t b = 0; b < beams.size(); ++b) {
+        if (!beams.intact()[b]) continue;
+        const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
+        const auto r = exact_response(mesh, beams, rest, b);
+        expected[i] += r.fx;
+        expected[n + i] += r.fy;
+        expected[j] -= r.fx;
+        expected[n + j] -= r.fy;
+        expected[2 * n + i] += r.torque_i;
+        expected[2 * n + j] += r.torque_j;
+        energy += r.energy;
+      }
+      for (std::size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(f[k], expected[k]) << threads << " threads, coordinate " << k;
+      EXPECT_NEAR(beams.energy(rest), energy, 1e-12 * energy) << threads << " threads";
+    }
+    // Enough broken beams for a compaction (every 7th cell pulled): then no broken beam waits in the list.
+    std::vector<double> pulled = rest;
+    for (std::size_t cell = 3; cell < n; cell += 7) pulled[cell] += 0.1 * kG;
+    beams.break_beams(pulled, mat.t_eps, mat.t_theta, broken);
+    ASSERT_GT(broken.size() * frac::dem::Beams::kCompactEvery, all);
+    const std::size_t had = broken.size();
+    beams.break_beams(pulled, mat.t_eps, mat.t_theta, broken);
+    EXPECT_EQ(broken.size(), had) << "a beam broken before broke again";
+    EXPECT_EQ(beams.intact_count(), all - broken.size());
+    double energy = 0;
+    for (std::size_t b = 0; b < beams.size(); ++b)
+      if (beams.intact()[b]) energy += exact_response(mesh, beams, rest, b).energy;
+    EXPECT_NEAR(beams.energy(rest), energy, 1e-12 * energy) << threads << " threads";
+  }
+  frac::set_threads(before);
+}
+
 }  // namespace
