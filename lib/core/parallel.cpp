@@ -17,19 +17,19 @@ void HomeFirstSchedule::reserve(std::size_t threads) {
   capacity_ = threads;
 }
 
-void HomeFirstSchedule::start_mine(std::size_t items) {
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+void HomeFirstSchedule::set(std::size_t t, std::size_t items, std::size_t nt) {
   const Range r = static_range(items, t, nt);
-  cursor_[t].next.store(r.first, std::memory_order_relaxed);
+  cursor_[t].first = r.first;
   cursor_[t].end = r.last;
+  cursor_[t].span.store(static_cast<std::uint64_t>(r.last - r.first), std::memory_order_relaxed);
+}
+
+void HomeFirstSchedule::start_mine(std::size_t items) {
+  set(static_cast<std::size_t>(thread_index()), items, static_cast<std::size_t>(thread_count()));
 }
 
 void HomeFirstSchedule::reset(std::size_t items, std::size_t nt) {
-  for (std::size_t t = 0; t < nt; ++t) {
-    const Range r = static_range(items, t, nt);
-    cursor_[t].next.store(r.first, std::memory_order_relaxed);
-    cursor_[t].end = r.last;
-  }
+  for (std::size_t t = 0; t < nt; ++t) set(t, items, nt);
 }
 
 PartLayout::PartLayout(std::size_t n, std::size_t blocks, std::size_t threads)

@@ -21,6 +21,15 @@ void ContactList::reserve(std::size_t count) {
   pair_force.resize(count);
 }
 
+void ContactList::move_entries(std::size_t from, std::size_t to, std::size_t count) {
+  if (from == to || count == 0) return;
+  // (Ascending copies: safe for to < from, overlapping or not.)
+  for (auto* a : {&i, &j}) std::copy(a->begin() + from, a->begin() + from + count, a->begin() + to);
+  for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &fn})
+    std::copy(a->begin() + from, a->begin() + from + count, a->begin() + to);
+  std::copy(pair_force.begin() + from, pair_force.begin() + from + count, pair_force.begin() + to);
+}
+
 Range ContactList::mine() const {
   if (blocks == static_cast<std::size_t>(thread_count())) return block[static_cast<std::size_t>(thread_index())];
   return this_thread_range(size());
@@ -206,7 +215,7 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
 // search goes straight to clipping; the others try the facing edges that last separated them (cached per
 // pair), then the current facing edges, which become the cached ones when they separate. Returns whether
 // the bounding circles overlap. Inline, up to the cached edges (what most pairs need); the rest out of line.
-inline bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, double slack) {
+inline bool ContactSearch::test_pair(std::size_t p, const double* x, const double* y, double slack, Fill* fill) {
   auto& pair = neighbours_[p];
   const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
   const double dx = x[j] - x[i], dy = y[j] - y[i];
@@ -224,12 +233,12 @@ inline bool ContactSearch::test_pair(std::size_t p, const double* x, const doubl
        geometry::edge_separates(world_polygon(j), static_cast<std::size_t>(pair.edge_j), world_polygon(i), slack,
                                 pair.deepest_j)))
     return true;
-  test_pair_further(p, x, y, slack);
+  test_pair_further(p, x, y, slack, fill);
   return true;
 }
 
 // test_pair past the cached edges: the current facing edges, then the overlap.
-void ContactSearch::test_pair_further(std::size_t p, const double* x, const double* y, double slack) {
+void ContactSearch::test_pair_further(std::size_t p, const double* x, const double* y, double slack, Fill* fill) {
   auto& pair = neighbours_[p];
   const auto i = static_cast<std::size_t>(pair.i), j = static_cast<std::size_t>(pair.j);
   const auto pi = world_polygon(i), pj = world_polygon(j);
@@ -264,10 +273,10 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
                               pair.i,
                               pair.j,
                               0.5 * (inv_d[pair.i] + inv_d[pair.j])};
-    if (direct_) {
-      put_contact(*direct_, static_cast<std::size_t>(direct_block_.count++), contact);
-      direct_block_.enclosed += contact.enclosed;
-      direct_block_.multi_crossing += contact.multi_crossing;
+    if (fill) {
+      put_contact(*fill->out, fill->next++, contact);
+      fill->enclosed += contact.enclosed;
+      fill->multi_crossing += contact.multi_crossing;
     } else {
       geometry_[p] = contact;
       pair_state_[p] = PairState::overlapping;
@@ -289,42 +298,12 @@ void ContactSearch::put_contact(ContactList& out, std::size_t k, const PairConta
   out.pair_force[k] = {0.0, 0.0};
 }
 
-// The block's contacts, entries [offset, offset + count) of the list, in pair order from pair `first` on (the
-// first overlapping pair at or after it is contact `offset`), and the block's diagnostics.
-void ContactSearch::fill_contacts(std::size_t first, Block& block, ContactList& out) {
-  const PairState* state = pair_state_.data();
-  const std::size_t pairs = neighbours_.size();
-  auto k = static_cast<std::size_t>(block.offset);
-  const auto last = static_cast<std::size_t>(block.offset + block.count);
-  std::int64_t enclosed = 0, multi_crossing = 0;  // (counted here, not in the block: the blocks share a line)
-  // A chunk of pairs at a time: first the overlapping ones picked out (branch-free: which pairs overlap is a coin
-  // toss to the predictor), then copied.
-  constexpr std::size_t kChunk = 256;
-  std::array<std::int32_t, kChunk> overlapping;
-  for (std::size_t p = first; k < last && p < pairs; p += kChunk) {
-    const std::size_t end = std::min(pairs, p + kChunk);
-    std::size_t found = 0;
-    for (std::size_t q = p; q < end; ++q) {
-      overlapping[found] = static_cast<std::int32_t>(q);
-      found += state[q] == PairState::overlapping;
-    }
-    for (std::size_t s = 0; s < found && k < last; ++s, ++k) {
-      const auto q = static_cast<std::size_t>(overlapping[s]);
-      const PairContact& geo = geometry_[q];
-      put_contact(out, k, geo);
-      enclosed += geo.enclosed;
-      multi_crossing += geo.multi_crossing;
-    }
-  }
-  block.enclosed = enclosed;
-  block.multi_crossing = multi_crossing;
-}
-
 void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (blocks_.size() < threads) blocks_.resize(threads);
   if (thread_pairs_.size() < threads) thread_pairs_.resize(threads);
   if (out.block.size() < threads) out.block.resize(threads);
   pair_schedule_.reserve(threads);
+  own_contacts_.reserve(threads);
   moved_.reserve(threads);
   candidates_.reserve(threads);
 }
@@ -373,39 +352,67 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const double* y = x + bodies_->n;
   const double g = bodies_->length_scale;
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
-  const std::size_t pairs = neighbours_.size();
-  // Each neighbour pair in its own slot; pairs that clip cost ten times those that do not: each thread takes
-  // the pairs of its cells first, then helps the others. A team of one tests the pairs in order, so each contact
-  // goes straight to its entry in the list instead (no slot, no second pass): the same list.
-  const bool direct = nt == 1;
-  direct_ = direct ? &out : nullptr;
-  direct_block_ = Block{};
+  // Pairs that clip cost ten times those that do not: each thread tests the pairs of its cells first, in order,
+  // and puts their contacts straight into the list, from the entry of its first pair on (room for them: at most
+  // one contact a pair); a thread done with its own tests the others' last pairs, into the pairs' own slots.
+  const std::size_t start = pair_schedule_.first(t);
+  Fill fill{&out, start, 0, 0};
   std::int64_t candidates = 0;
-  pair_schedule_.run(64, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) candidates += test_pair(p, x, y, slack);
+  pair_schedule_.run(64, [&](std::size_t begin, std::size_t end, bool own) {
+    Fill* into = own ? &fill : nullptr;
+    for (std::size_t p = begin; p < end; ++p) candidates += test_pair(p, x, y, slack, into);
   });
   candidates_.mine() = candidates;
-  if (direct) {
-    direct_ = nullptr;  // (no pointer to the list kept past the tests)
-    block = direct_block_;
-    out.block[t] = {0, static_cast<std::size_t>(block.count)};
-    return;
-  }
+  const std::size_t own = fill.next - start;
+  block.enclosed = fill.enclosed;
+  block.multi_crossing = fill.multi_crossing;
+  if (nt > 1) {
+    own_contacts_.mine() = own;
 #pragma omp barrier
-  // The list in pair order, the same whatever the thread count, cut into equal blocks, one per thread: every
-  // thread counts the overlapping pairs (one byte per pair, vectorised: cheaper than another barrier) and
-  // finds where its block starts.
+    // The list in pair order, the same whatever the thread count: this thread's contacts go after those of the
+    // threads before it, their own and those of their last pairs, which others tested (counted from the pairs'
+    // states). Its own move down there, then its last pairs' come from their slots. The entries below belong to
+    // the threads before: the second thread's move overwrites nothing another still reads; a later one waits
+    // for the moves before it.
+    std::size_t offset = 0;
+    for (std::size_t u = 0; u < t; ++u)
+      offset += own_contacts_[u] + overlapping_pairs(pair_schedule_.split(u), pair_schedule_.end(u));
+    for (std::size_t u = 1; u < nt; ++u) {
+      if (u == t) {
+        out.move_entries(start, offset, own);
+        fill.next = offset + own;
+        fill_from_slots(pair_schedule_.split(t), pair_schedule_.end(t), fill);
+      }
+      if (u + 1 < nt) {
+#pragma omp barrier
+      }
+    }
+    if (t == 0) fill_from_slots(pair_schedule_.split(0), pair_schedule_.end(0), fill);
+    block.enclosed = fill.enclosed;
+    block.multi_crossing = fill.multi_crossing;
+    block.offset = static_cast<std::int64_t>(offset);
+  }
+  const std::size_t first = static_cast<std::size_t>(block.offset);
+  block.count = static_cast<std::int64_t>(fill.next - first);
+  out.block[t] = {first, fill.next};
+}
+
+std::size_t ContactSearch::overlapping_pairs(std::size_t first, std::size_t last) const {
   const PairState* state = pair_state_.data();
-  std::int64_t total = 0;
-  for (std::size_t p = 0; p < pairs; ++p) total += state[p] == PairState::overlapping;
-  const std::int64_t first = total * static_cast<std::int64_t>(t) / static_cast<std::int64_t>(nt);
-  const std::int64_t last = total * static_cast<std::int64_t>(t + 1) / static_cast<std::int64_t>(nt);
-  std::size_t p = 0;
-  for (std::int64_t seen = 0; seen < first; ++p) seen += state[p] == PairState::overlapping;
-  block.offset = first;
-  block.count = last - first;
-  fill_contacts(p, block, out);
-  out.block[t] = {static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+  std::size_t count = 0;
+  for (std::size_t p = first; p < last; ++p) count += state[p] == PairState::overlapping;
+  return count;
+}
+
+void ContactSearch::fill_from_slots(std::size_t first, std::size_t last, Fill& fill) const {
+  const PairState* state = pair_state_.data();
+  for (std::size_t p = first; p < last; ++p) {
+    if (state[p] != PairState::overlapping) continue;
+    const PairContact& contact = geometry_[p];
+    put_contact(*fill.out, fill.next++, contact);
+    fill.enclosed += contact.enclosed;
+    fill.multi_crossing += contact.multi_crossing;
+  }
 }
 
 void ContactSearch::find_end(ContactList& out) {

@@ -62,6 +62,8 @@ struct ContactList {
   // Room for `count` contacts (never shrinks; the size is unchanged).
   void reserve(std::size_t count);
   std::size_t room() const { return i.size(); }
+  // Entries [from, from + count) copied to [to, to + count), to ≤ from (the search's fill).
+  void move_entries(std::size_t from, std::size_t to, std::size_t count);
   // Sets every contact's summed force back to zero.
   void clear_forces();
   // Diagnostics of the last search.
@@ -121,8 +123,15 @@ class ContactSearch {
   };
   std::vector<GridBody> grid_body_;
   void rebuild(std::span<const double> q, ContactList& out);  // a team function, barriers at its ends
-  bool test_pair(std::size_t p, const double* x, const double* y, double slack);
-  [[gnu::noinline]] void test_pair_further(std::size_t p, const double* x, const double* y, double slack);
+  // Where a thread puts the contacts of the pairs it tests in order: the list's entries from `next` on.
+  struct Fill {
+    ContactList* out;
+    std::size_t next;
+    std::int64_t enclosed, multi_crossing;
+  };
+  // (fill: null for a pair another thread's part holds: its contact goes to the pair's slot.)
+  bool test_pair(std::size_t p, const double* x, const double* y, double slack, Fill* fill);
+  [[gnu::noinline]] void test_pair_further(std::size_t p, const double* x, const double* y, double slack, Fill* fill);
   // Verlet list: pairs whose bounding circles come within `skin_` of each other, rebuilt when two cells'
   // centroids may together have moved by more than the skin since the last build, so no pair can start to
   // overlap unseen.
@@ -154,16 +163,16 @@ class ContactSearch {
   TeamSlots<Moved> moved_;                                // per thread
   TeamSlots<std::int64_t> candidates_;                    // per thread: candidate pairs it tested
   std::size_t teams_ = 1;                                 // threads of the team of the last find
-  struct Block {  // one thread's block of pairs in the list fill
+  struct Block {  // one thread's block of the list: the contacts of its part of the pairs
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
     std::int64_t offset = 0;                                   // its first entry in the list
   };
-  void fill_contacts(std::size_t first, Block& block, ContactList& out);
   std::vector<Block> blocks_;  // per thread
-  // A team of one fills the list as it tests the pairs: into this list (null: a larger team), this block.
-  ContactList* direct_ = nullptr;
-  Block direct_block_;
   HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
+  TeamSlots<std::size_t> own_contacts_;  // per thread: the contacts of the pairs it tested of its own part
+  // The overlapping pairs of [first, last) that went to their slots; their contacts, in pair order, into `fill`.
+  std::size_t overlapping_pairs(std::size_t first, std::size_t last) const;
+  void fill_from_slots(std::size_t first, std::size_t last, Fill& fill) const;
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)

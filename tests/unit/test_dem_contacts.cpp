@@ -8,6 +8,7 @@
 // and the overlap area carry a few ulps of the polygon size s; relative to the overlap (width δ ≥ 0.1 s)
 // that is ~1e-14, and a translation by 0.3 m (ulp 5.6e-17 m on s = 1 cm) adds ~1e-13. 1e-12 leaves a
 // factor of ten.
+#include <array>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -383,9 +384,9 @@ TEST(DemContacts, SearchFindsEveryOverlappingPair) {
 // than its skin) misses no pair whose bounding circles overlap, let alone one whose polygons do: every cell
 // drifting at up to 0.05 lattice spacings a step (pairs closing at up to 0.14) and turning by up to 0.3 rad a
 // step (turning cannot take a polygon out of its circle), against brute force at every state; on one and on
-// two threads. (A rule that let each cell move by the whole skin misses circle pairs here.)
+// two and three threads. (A rule that let each cell move by the whole skin misses circle pairs here.)
 TEST(DemContacts, NeighbourListKeptAcrossStatesMissesNoPair) {
-  for (const int threads : {1, 2}) {
+  for (const int threads : {1, 2, 3}) {
     const int before = frac::max_threads();
     frac::set_threads(threads);
     Sample s = random_overlaps(4, 0.02);
@@ -420,8 +421,9 @@ TEST(DemContacts, NeighbourListKeptAcrossStatesMissesNoPair) {
   }
 }
 
-// The search, the three terms and the sum over the contacts on one and on two threads: the forces, torques and
-// powers are the same bits, after forces already on the cells (as the beams leave them) and for every term.
+// The search, the three terms and the sum over the contacts on one, two and three threads: the same list, entry by
+// entry, and the forces, torques and powers the same bits, after forces already on the cells (as the beams leave
+// them) and for every term.
 // (More than 256 contacts: fewer run on one thread whatever the thread count.)
 TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
   for (std::uint64_t seed : {1u, 2u}) {
@@ -435,14 +437,18 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
     frac::Rng rng(seed + 7);
     std::vector<double> f0(3 * n);
     for (double& x : f0) x = rng.uniform(-1, 1);
-    std::vector<double> forces[2];
-    double powers[2][3];
-    for (int threads : {1, 2}) {
+    std::vector<double> forces[3];
+    double powers[3][3];
+    std::vector<std::array<double, 4>> entries[3];  // each contact's cells, area and normal, in list order
+    for (int threads : {1, 2, 3}) {
       frac::set_threads(threads);
       ContactSearch search(s.mesh, bodies);
       ContactList list;
       search.find(s.q, list);
       ASSERT_GT(list.size(), 256u) << "the test needs the parallel path";
+      for (std::size_t k = 0; k < list.size(); ++k)
+        entries[threads - 1].push_back({static_cast<double>(list.i[k]), static_cast<double>(list.j[k]), list.area[k],
+                                        list.nx[k]});
       auto& f = forces[threads - 1];
       f = f0;
       powers[threads - 1][0] = frac::dem::contact_elastic(list, p, bodies, s.q, s.v);
@@ -451,9 +457,13 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
       frac::dem::add_contact_forces(list, n, s.q, f);
     }
     frac::set_threads(1);
-    for (std::size_t k = 0; k < 3 * n; ++k)
-      ASSERT_EQ(forces[0][k], forces[1][k]) << "seed " << seed << ", coordinate " << k;
-    for (int t = 0; t < 3; ++t) EXPECT_EQ(powers[0][t], powers[1][t]) << "term " << t;
+    for (int threads : {2, 3}) {
+      const auto u = static_cast<std::size_t>(threads - 1);
+      ASSERT_EQ(entries[u], entries[0]) << "seed " << seed << ": the list on " << threads << " threads";
+      for (std::size_t k = 0; k < 3 * n; ++k)
+        ASSERT_EQ(forces[0][k], forces[u][k]) << "seed " << seed << ", coordinate " << k << ", " << threads << " threads";
+      for (int t = 0; t < 3; ++t) EXPECT_EQ(powers[0][t], powers[u][t]) << "term " << t << ", " << threads << " threads";
+    }
   }
 }
 
