@@ -65,6 +65,18 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
 }
 
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
+  evaluate(t, q, v, a, nullptr);
+}
+
+bool Model::accelerations_around(double t, std::span<const double> q, std::span<const double> v,
+                                 std::span<double> a, StepLoops& loops) {
+  if (!prescribed_.empty()) return false;
+  evaluate(t, q, v, a, &loops);
+  return true;
+}
+
+void Model::evaluate(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
+                     StepLoops* loops) {
   const std::size_t n = size();
   double* force = force_.data();
   power_.fill(0.0);
@@ -80,8 +92,14 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
   // One parallel region (core/parallel.hpp: team functions), barriers only where a thread reads what another
   // wrote. Each thread takes the same cells in every per-cell loop (static_range), so it finds the values
   // where it left them, and the contacts it filled, for the contact terms.
+  // With the integrator's loops: its predictor first (each thread its coordinates, the same split as the
+  // per-cell loops here), and its corrector last, once every force is known to be finite.
   as_team(bodies_.n > kMinParallelItems, [&] {
     const auto nt = static_cast<std::size_t>(thread_count());
+    if (loops) {
+      loops->predict();
+#pragma omp barrier
+    }
     if (!beams_on) {
       this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
 #pragma omp simd
@@ -134,6 +152,12 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
       }
     });
     zero_.mine() = bad ? 1.0 : 0.0;
+    if (loops) {
+#pragma omp barrier
+      bool finite = true;
+      for (std::size_t s = 0; s < nt; ++s) finite = finite && zero_[s] == 0.0;
+      if (finite) loops->correct();
+    }
   });
   if (contact_list) {
     for (const Term term : terms_) {

@@ -46,6 +46,8 @@ class Model final : public dynamics::System {
 
   // dynamics::System
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  bool accelerations_around(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
+                            StepLoops& loops) override;
   std::size_t coordinate_blocks() const override { return 3; }  // x, y, φ of every cell
   std::span<const std::size_t> prescribed() const override { return prescribed_index_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
@@ -80,6 +82,9 @@ class Model final : public dynamics::System {
   std::array<double, 2> kinetic_energy(std::span<const double> v) const;
 
  private:
+  // accelerations, with the integrator's loops around them on its team when `loops` is given.
+  void evaluate(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
+                StepLoops* loops);
   // Adds one term's forces into force_; returns the power it delivers (W; 0 for the beams, which derive from
   // an energy).
   double add_term(Term term, std::span<const double> q, std::span<const double> v);

@@ -1,6 +1,7 @@
 #include "dynamics/integrator.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -280,7 +281,56 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
 }
 }  // namespace
 
+bool Gear5::step_around(System& system) {
+  if (!system.prescribed().empty() || layout_.threads() == 1) return false;
+  struct Loops final : System::StepLoops {
+    double *r0, *r1, *r2, *r3, *r4, *r5, *v;
+    const double* a;
+    double inv_dt, half_dt2;
+    const PartLayout* layout;
+    TeamSlots<int>* bad;
+    std::atomic<bool> corrected{false};
+    void predict() override {
+      layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+        gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
+      });
+    }
+    void correct() override {
+      int mine = 0;
+      layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+        mine |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
+      });
+      bad->mine() = mine;
+      corrected.store(true, std::memory_order_relaxed);
+    }
+  };
+  const auto most = static_cast<std::size_t>(max_threads());
+  bad_.reserve(most);
+  for (std::size_t t = 0; t < most; ++t) bad_[t] = 0;
+  Loops loops;
+  loops.r0 = r_[0].data();
+  loops.r1 = r_[1].data();
+  loops.r2 = r_[2].data();
+  loops.r3 = r_[3].data();
+  loops.r4 = r_[4].data();
+  loops.r5 = r_[5].data();
+  loops.v = v_.data();
+  loops.a = a_.data();
+  loops.inv_dt = 1.0 / dt_;
+  loops.half_dt2 = 0.5 * dt_ * dt_;
+  loops.layout = &layout_;
+  loops.bad = &bad_;
+  if (!system.accelerations_around(t_ + dt_, r_[0], v_, a_, loops)) return false;
+  t_ += dt_;
+  int bad = 0;
+  for (std::size_t t = 0; t < most; ++t) bad |= bad_[t];
+  finite_ = bad == 0 && loops.corrected.load(std::memory_order_relaxed);  // (not corrected: a non-finite force)
+  ++steps_;
+  return true;
+}
+
 void Gear5::step(System& system) {
+  if (step_around(system)) return;
   double* const r0 = r_[0].data();
   double* const r1 = r_[1].data();
   double* const r2 = r_[2].data();

@@ -34,6 +34,26 @@ class System {
   virtual std::size_t coordinate_blocks() const { return 1; }
   virtual void prescribe(double /*t*/, std::span<double> /*q*/, std::span<double> /*v*/,
                          std::span<double> /*a*/) const {}
+  // The integrator's per-coordinate loops of one step, for a system that runs them on the team of threads of its
+  // own evaluation (two thread starts a step fewer): each thread calls predict() first, on its part of the
+  // coordinates (the same split as coordinate_blocks' loops), and after a barrier the evaluation reads the
+  // predicted state; correct() last, each thread after the accelerations of its part, and only if every
+  // force is finite (after another barrier: a system that names the term that made a non-finite force needs the
+  // predicted state).
+  class StepLoops {
+   public:
+    virtual void predict() = 0;
+    virtual void correct() = 0;
+
+   protected:
+    ~StepLoops() = default;
+  };
+  // Accelerations at (t, q, v) into a, as accelerations(), with `loops` run around them on its team; returns
+  // whether it ran them (the default: no, and nothing was done). Not for a system that prescribes coordinates.
+  virtual bool accelerations_around(double /*t*/, std::span<const double> /*q*/, std::span<const double> /*v*/,
+                                    std::span<double> /*a*/, StepLoops& /*loops*/) {
+    return false;
+  }
 };
 
 enum class IntegratorKind { gear5, verlet };
@@ -136,6 +156,10 @@ class Gear5 final : public Integrator {
 
  private:
   void apply_prescribed(const System& system, double t);
+  // One step with its predictor and corrector run on the system's team (System::accelerations_around); false if
+  // the system does not.
+  bool step_around(System& system);
+  TeamSlots<int> bad_;  // per thread: whether a corrected value it wrote is not finite
   // Scaled derivatives r_k = dt^k/k! · d^k q/dt^k: r_[0] = q in the system's layout, r_[1..5] (which only the
   // step's loops touch) in layout_, the threads' parts apart (core/parallel.hpp: PartLayout).
   std::vector<double> r_[6];

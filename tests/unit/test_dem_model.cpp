@@ -808,6 +808,78 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
   frac::set_threads(before);
 }
 
+// Forwards a model's accelerations without running the integrator's loops on its team: gear5 then takes its own.
+class OwnTeams final : public frac::dynamics::System {
+ public:
+  explicit OwnTeams(Model& m) : m_(m) {}
+  void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override {
+    m_.accelerations(t, q, v, a);
+  }
+  std::size_t coordinate_blocks() const override { return m_.coordinate_blocks(); }
+
+ private:
+  Model& m_;
+};
+
+// On two threads, gear5 runs its predictor and corrector on the team of the model's evaluation: the same bits
+// as on teams of their own, step after step (a squeezed disc, every term on); and when a force is not finite,
+// it leaves the predicted state, not finite, with the term named as on teams of their own.
+TEST(DemModel, StepOnTheModelsTeamEqualsTheStepOnTeamsOfItsOwn) {
+  const CellMesh mesh = disc_mesh(400, 3);
+  const std::size_t n = mesh.cells();
+  Material mat;
+  mat.gamma_n = mat.gamma_t = 1000;
+  mat.friction = 0.3;
+  Physics ph;
+  ph.damping = ph.friction = true;
+  auto q = reference_state(mesh);
+  for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
+  frac::Rng rng(13);
+  std::vector<double> v(3 * n);
+  for (double& x : v) x = rng.uniform(-0.1, 0.1);
+  const int before = frac::max_threads();
+  frac::set_threads(2);
+  Model fused_model(mesh, mat, ph), own_model(mesh, mat, ph);
+  OwnTeams own(own_model);
+  frac::dynamics::Gear5 fused_gear, own_gear;
+  const double dt = 1e-7;
+  fused_gear.start(fused_model, 0, dt, q, v);
+  own_gear.start(own, 0, dt, q, v);
+  for (int step = 1; step <= 20; ++step) {
+    fused_gear.step(fused_model);
+    own_gear.step(own);
+    ASSERT_TRUE(fused_gear.finite() && own_gear.finite());
+    for (std::size_t k = 0; k < 3 * n; ++k) {
+      ASSERT_EQ(fused_gear.q()[k], own_gear.q()[k]) << "step " << step << ", coordinate " << k;
+      ASSERT_EQ(fused_gear.v()[k], own_gear.v()[k]) << "step " << step << ", coordinate " << k;
+    }
+  }
+  // A NaN velocity: the predictor turns it into a NaN position, whose beams (the first term) go NaN; both name
+  // the same term and coordinate, at the predicted state.
+  fused_gear.set_velocity(n / 2, std::numeric_limits<double>::quiet_NaN());
+  own_gear.set_velocity(n / 2, std::numeric_limits<double>::quiet_NaN());
+  fused_gear.step(fused_model);
+  own_gear.step(own);
+  EXPECT_FALSE(fused_gear.finite());
+  EXPECT_EQ(fused_model.non_finite_term(), Term::beams);
+  EXPECT_EQ(own_model.non_finite_term(), Term::beams);
+  EXPECT_EQ(fused_model.non_finite_index(), own_model.non_finite_index());
+  // Left predicted, not corrected: the NaN stays in the one velocity and the one position the predictor made
+  // from it (a correction would spread it to every cell whose forces it touched).
+  std::size_t bad_q = 0, bad_v = 0;
+  for (std::size_t k = 0; k < 3 * n; ++k) {
+    bad_q += !std::isfinite(fused_gear.q()[k]);
+    bad_v += !std::isfinite(fused_gear.v()[k]);
+  }
+  EXPECT_EQ(bad_q, 1u);
+  EXPECT_EQ(bad_v, 1u);
+  EXPECT_TRUE(std::isnan(fused_gear.q()[n / 2]));
+  std::size_t own_bad = 0;
+  for (std::size_t k = 0; k < 3 * n; ++k) own_bad += !std::isfinite(own_gear.q()[k]);
+  EXPECT_GT(own_bad, 1u) << "the test shows nothing: a correction would not spread the NaN";
+  frac::set_threads(before);
+}
+
 // The model's force evaluation runs every term on one team of threads (core/parallel.hpp: each thread its
 // cells, its beams and the block of the contact list it filled). On 1, 2 and 3 threads it gives the same bits
 // as the terms composed one by one, each a team of its own: the beams written, the contact terms in engine
