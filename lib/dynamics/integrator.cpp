@@ -281,29 +281,32 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
 }
 }  // namespace
 
-bool Gear5::step_around(System& system) {
-  if (!system.prescribed().empty() || layout_.threads() == 1) return false;
-  struct Loops final : System::StepLoops {
-    double *r0, *r1, *r2, *r3, *r4, *r5, *v;
-    const double* a;
-    double inv_dt, half_dt2;
-    const PartLayout* layout;
-    TeamSlots<int>* bad;
-    std::atomic<bool> corrected{false};
-    void predict() override {
-      layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-        gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
-      });
-    }
-    void correct() override {
-      int mine = 0;
-      layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-        mine |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
-      });
-      bad->mine() = mine;
-      corrected.store(true, std::memory_order_relaxed);
-    }
-  };
+// The step's loops over this thread's parts of the coordinates (PartLayout: r_[1..5] shifted), as a system runs
+// them on its team (System::StepLoops) or the step on teams of their own. The corrector records, per thread,
+// whether a value it wrote is not finite.
+struct Gear5::Loops final : System::StepLoops {
+  double *r0, *r1, *r2, *r3, *r4, *r5, *v;
+  const double* a;
+  double inv_dt, half_dt2;
+  const PartLayout* layout;
+  TeamSlots<int>* bad;
+  std::atomic<bool> corrected{false};
+  void predict() override {
+    layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+      gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
+    });
+  }
+  void correct() override {
+    int mine = 0;
+    layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+      mine |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
+    });
+    bad->mine() = mine;
+    corrected.store(true, std::memory_order_relaxed);
+  }
+};
+
+void Gear5::step(System& system) {
   const auto most = static_cast<std::size_t>(max_threads());
   bad_.reserve(most);
   for (std::size_t t = 0; t < most; ++t) bad_[t] = 0;
@@ -320,60 +323,22 @@ bool Gear5::step_around(System& system) {
   loops.half_dt2 = 0.5 * dt_ * dt_;
   loops.layout = &layout_;
   loops.bad = &bad_;
-  if (!system.accelerations_around(t_ + dt_, r_[0], v_, a_, loops)) return false;
+  // On the system's team when it runs them (none prescribed), else each loop on a team of its own (when the
+  // layout has more than one thread) around the evaluation.
+  const bool team = layout_.threads() > 1;
+  const bool fixed = !system.prescribed().empty();
+  if (fixed || !team || !system.accelerations_around(t_ + dt_, r_[0], v_, a_, loops)) {
+    as_team(team, [&] { loops.predict(); });
+    apply_prescribed(system, t_ + dt_);
+    system.accelerations(t_ + dt_, r_[0], v_, a_);
+    as_team(team, [&] { loops.correct(); });
+    apply_prescribed(system, t_ + dt_);
+  }
   t_ += dt_;
   int bad = 0;
   for (std::size_t t = 0; t < most; ++t) bad |= bad_[t];
-  finite_ = bad == 0 && loops.corrected.load(std::memory_order_relaxed);  // (not corrected: a non-finite force)
-  ++steps_;
-  return true;
-}
-
-void Gear5::step(System& system) {
-  if (step_around(system)) return;
-  double* const r0 = r_[0].data();
-  double* const r1 = r_[1].data();
-  double* const r2 = r_[2].data();
-  double* const r3 = r_[3].data();
-  double* const r4 = r_[4].data();
-  double* const r5 = r_[5].data();
-  double* const v = v_.data();
-  const double* const a = a_.data();
-  const double inv_dt = 1.0 / dt_;
-  // Each thread its parts of the coordinates (r_[1..5] shifted by the layout), in a team when the layout has
-  // more than one thread.
-  const PartLayout& layout = layout_;
-  const auto predict = [&] {
-    layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-      gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
-    });
-  };
-  if (layout.threads() > 1) {
-#pragma omp parallel
-    predict();
-  } else {
-    predict();
-  }
-  t_ += dt_;
-  apply_prescribed(system, t_);
-  system.accelerations(t_, r_[0], v_, a_);
-  const double half_dt2 = 0.5 * dt_ * dt_;
-  int bad = 0;
-  const auto correct = [&] {
-    int mine = 0;
-    layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-      mine |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
-    });
-    return mine;
-  };
-  if (layout.threads() > 1) {
-#pragma omp parallel reduction(| : bad)
-    bad |= correct();
-  } else {
-    bad = correct();
-  }
-  finite_ = bad == 0;
-  apply_prescribed(system, t_);
+  // (Not corrected: a force was not finite, the state is the predicted one.)
+  finite_ = bad == 0 && loops.corrected.load(std::memory_order_relaxed);
   ++steps_;
 }
 

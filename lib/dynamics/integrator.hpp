@@ -156,9 +156,7 @@ class Gear5 final : public Integrator {
 
  private:
   void apply_prescribed(const System& system, double t);
-  // One step with its predictor and corrector run on the system's team (System::accelerations_around); false if
-  // the system does not.
-  bool step_around(System& system);
+  struct Loops;          // the step's predictor and corrector (integrator.cpp)
   TeamSlots<int> bad_;  // per thread: whether a corrected value it wrote is not finite
   // Scaled derivatives r_k = dt^k/k! · d^k q/dt^k: r_[0] = q in the system's layout, r_[1..5] (which only the
   // step's loops touch) in layout_, the threads' parts apart (core/parallel.hpp: PartLayout).
