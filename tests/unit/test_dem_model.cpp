@@ -808,6 +808,27 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
   frac::set_threads(before);
 }
 
+// A disc of 400 cells (above the size where a force evaluation runs on the threads) squeezed by 1 % about the
+// origin, so that neighbours overlap, with random velocities of up to `speed` (so that damping and friction have
+// work), every term on.
+struct SqueezedDisc {
+  CellMesh mesh = disc_mesh(400, 3);
+  Material mat;
+  Physics ph;
+  std::vector<double> q, v;
+  SqueezedDisc(std::uint64_t seed, double speed) {
+    const std::size_t n = mesh.cells();
+    mat.gamma_n = mat.gamma_t = 1000;
+    mat.friction = 0.3;
+    ph.damping = ph.friction = true;
+    q = reference_state(mesh);
+    for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
+    frac::Rng rng(seed);
+    v.resize(3 * n);
+    for (double& x : v) x = rng.uniform(-speed, speed);
+  }
+};
+
 // Forwards a model's accelerations without running the integrator's loops on its team: gear5 then takes its own.
 class OwnTeams final : public frac::dynamics::System {
  public:
@@ -825,26 +846,16 @@ class OwnTeams final : public frac::dynamics::System {
 // as on teams of their own, step after step (a squeezed disc, every term on); and when a force is not finite,
 // it leaves the predicted state, not finite, with the term named as on teams of their own.
 TEST(DemModel, StepOnTheModelsTeamEqualsTheStepOnTeamsOfItsOwn) {
-  const CellMesh mesh = disc_mesh(400, 3);
-  const std::size_t n = mesh.cells();
-  Material mat;
-  mat.gamma_n = mat.gamma_t = 1000;
-  mat.friction = 0.3;
-  Physics ph;
-  ph.damping = ph.friction = true;
-  auto q = reference_state(mesh);
-  for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
-  frac::Rng rng(13);
-  std::vector<double> v(3 * n);
-  for (double& x : v) x = rng.uniform(-0.1, 0.1);
+  const SqueezedDisc disc(13, 0.1);
+  const std::size_t n = disc.mesh.cells();
   const int before = frac::max_threads();
   frac::set_threads(2);
-  Model fused_model(mesh, mat, ph), own_model(mesh, mat, ph);
+  Model fused_model(disc.mesh, disc.mat, disc.ph), own_model(disc.mesh, disc.mat, disc.ph);
   OwnTeams own(own_model);
   frac::dynamics::Gear5 fused_gear, own_gear;
   const double dt = 1e-7;
-  fused_gear.start(fused_model, 0, dt, q, v);
-  own_gear.start(own, 0, dt, q, v);
+  fused_gear.start(fused_model, 0, dt, disc.q, disc.v);
+  own_gear.start(own, 0, dt, disc.q, disc.v);
   for (int step = 1; step <= 20; ++step) {
     fused_gear.step(fused_model);
     own_gear.step(own);
@@ -887,20 +898,16 @@ TEST(DemModel, StepOnTheModelsTeamEqualsTheStepOnTeamsOfItsOwn) {
 // damping and friction have work), 400 cells (above the size where the team runs on the threads); then again
 // after some beams broke and the neighbour list was rebuilt at a moved state.
 TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
-  const CellMesh mesh = disc_mesh(400, 3);
+  const SqueezedDisc disc(11, 1.0);
+  const CellMesh& mesh = disc.mesh;
+  const Material& mat = disc.mat;
+  const Physics& ph = disc.ph;
+  const auto& q = disc.q;
+  const auto& v = disc.v;
   const std::size_t n = mesh.cells();
-  Material mat;
-  mat.gamma_n = mat.gamma_t = 1000;
-  mat.friction = 0.3;
-  Physics ph;
-  ph.damping = ph.friction = true;
-  auto q = reference_state(mesh);
-  for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
-  frac::Rng rng(11);
-  std::vector<double> v(3 * n);
-  for (double& x : v) x = rng.uniform(-1, 1);
-  auto q_moved = q;
+  std::vector<double> q_moved = q;
   for (std::size_t k = 0; k < 3 * n; ++k) q_moved[k] += 0.2 * kG * v[k];  // past half the skin: a rebuild
+  const std::vector<double>& moved = q_moved;
   const int before = frac::max_threads();
   for (const int threads : {1, 2, 3}) {
     frac::set_threads(threads);
@@ -908,7 +915,7 @@ TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
     // The terms one by one: a search of its own that sees the same states (it keeps what it learnt from one
     // to the next, as the model's does: the clip order of an irregular overlap changes it at round-off).
     frac::dem::ContactSearch search(mesh, model.bodies());
-    for (const auto* state : {&q, &q_moved}) {
+    for (const std::vector<double>* state : {&q, &moved}) {
       if (state == &q_moved) {
         for (std::size_t b = 0; b < model.beams().size(); b += 7) model.beams().remove(b);
       }
@@ -971,6 +978,28 @@ frac::dem::BeamResponse exact_response(const CellMesh& mesh, const frac::dem::Be
                                   q[2 * n + j], l0, beams.stiffness(b));
 }
 
+// The loop over the intact beams in beam order (F on i, −F and τ_j on j) with the exact beam law at q: the forces
+// (fx, fy, torque layout), and their elastic energy into `energy`.
+std::vector<double> intact_beam_forces(const CellMesh& mesh, const frac::dem::Beams& beams, std::span<const double> q,
+                                       double& energy) {
+  const std::size_t n = mesh.cells();
+  std::vector<double> f(3 * n, 0.0);
+  energy = 0;
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    if (!beams.intact()[b]) continue;
+    const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
+    const auto r = exact_response(mesh, beams, q, b);
+    f[i] += r.fx;
+    f[n + i] += r.fy;
+    f[j] -= r.fx;
+    f[n + j] -= r.fy;
+    f[2 * n + i] += r.torque_i;
+    f[2 * n + j] += r.torque_j;
+    energy += r.energy;
+  }
+  return f;
+}
+
 TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
   const CellMesh mesh = rect_mesh(14, 10, 5);
   Material mat;
@@ -980,19 +1009,10 @@ TEST(DemModel, BeamForcesAreTheSumOverIntactBeamsInBeamOrder) {
   for (int round = 0; round < 3; ++round) {
     if (round > 0)
       for (std::size_t b = static_cast<std::size_t>(round); b < beams.size(); b += 5) beams.remove(b);
-    std::vector<double> f(3 * n, 0.0), expected(3 * n, 0.0);
+    std::vector<double> f(3 * n, 0.0);
     beams.add_forces(q, f);
-    for (std::size_t b = 0; b < beams.size(); ++b) {
-      if (!beams.intact()[b]) continue;
-      const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
-      const auto r = exact_response(mesh, beams, q, b);
-      expected[i] += r.fx;
-      expected[n + i] += r.fy;
-      expected[j] -= r.fx;
-      expected[n + j] -= r.fy;
-      expected[2 * n + i] += r.torque_i;
-      expected[2 * n + j] += r.torque_j;
-    }
+    double energy;
+    const std::vector<double> expected = intact_beam_forces(mesh, beams, q, energy);
     for (std::size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(f[k], expected[k]) << "round " << round << ", coordinate " << k;
   }
 }
@@ -1061,21 +1081,10 @@ TEST(DemModel, BrokenBeamsWaitingForCompactionCarryNothing) {
       ASSERT_LT(broken.size() * frac::dem::Beams::kCompactEvery, all) << "few enough to wait in the list";
       EXPECT_EQ(beams.intact_count(), all - broken.size());
       // Forces: exactly the sum over the intact beams; energy: the intact beams' energies, to round-off.
-      std::vector<double> f(3 * n, 0.0), expected(3 * n, 0.0);
+      std::vector<double> f(3 * n, 0.0);
       beams.add_forces(rest, f);
-      double energy = 0;
-      for (std::size_t b = 0; b < beams.size(); ++b) {
-        if (!beams.intact()[b]) continue;
-        const auto i = static_cast<std::size_t>(beams.cell_i(b)), j = static_cast<std::size_t>(beams.cell_j(b));
-        const auto r = exact_response(mesh, beams, rest, b);
-        expected[i] += r.fx;
-        expected[n + i] += r.fy;
-        expected[j] -= r.fx;
-        expected[n + j] -= r.fy;
-        expected[2 * n + i] += r.torque_i;
-        expected[2 * n + j] += r.torque_j;
-        energy += r.energy;
-      }
+      double energy;
+      const std::vector<double> expected = intact_beam_forces(mesh, beams, rest, energy);
       for (std::size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(f[k], expected[k]) << threads << " threads, coordinate " << k;
       EXPECT_NEAR(beams.energy(rest), energy, 1e-12 * energy) << threads << " threads";
     }
@@ -1088,9 +1097,8 @@ TEST(DemModel, BrokenBeamsWaitingForCompactionCarryNothing) {
     beams.break_beams(pulled, mat.t_eps, mat.t_theta, broken);
     EXPECT_EQ(broken.size(), had) << "a beam broken before broke again";
     EXPECT_EQ(beams.intact_count(), all - broken.size());
-    double energy = 0;
-    for (std::size_t b = 0; b < beams.size(); ++b)
-      if (beams.intact()[b]) energy += exact_response(mesh, beams, rest, b).energy;
+    double energy;
+    intact_beam_forces(mesh, beams, rest, energy);
     EXPECT_NEAR(beams.energy(rest), energy, 1e-12 * energy) << threads << " threads";
   }
   frac::set_threads(before);
