@@ -304,6 +304,7 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (out.block.size() < threads) out.block.resize(threads);
   pair_schedule_.reserve(threads);
   own_contacts_.reserve(threads);
+  room_.reserve(threads);
   moved_.reserve(threads);
   candidates_.reserve(threads);
 }
@@ -311,31 +312,33 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
   reserve_threads(static_cast<std::size_t>(max_threads()), out);
   as_team(bodies_->n > kMinParallelItems, [&] {
-    find_start(q);
+    find_start(q, out);
+#pragma omp barrier
     find_finish(q, out);
   });
   find_end(out);
 }
 
-void ContactSearch::find_start(std::span<const double> q) {
+void ContactSearch::find_start(std::span<const double> q, const ContactList& out) {
+  const auto t = static_cast<std::size_t>(thread_index());
+  if (t == 0) teams_ = static_cast<std::size_t>(thread_count());
+  blocks_[t] = Block{};
+  candidates_.mine() = 0;
   if (bodies_->n < 2) return;
   world_vertices_and_staleness(q);
-  // This thread's cursor, for the current list (a rebuild resets them all).
+  // This thread's cursor, for the current list (a rebuild resets them all), and what the list has room for,
+  // read before anyone can change it (behind the barrier).
   const std::size_t pairs = neighbours_.size();
   pair_schedule_.start_mine(pairs);
+  room_.mine() = out.room() >= pairs;
 }
 
 void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  if (t == 0) teams_ = nt;
   Block& block = blocks_[t];
-  block = Block{};
-  candidates_.mine() = 0;
   out.block[t] = {0, 0};
   if (bodies_->n < 2) return;
-  // What the list has room for, read before anyone can change it (behind the barrier).
-  const bool room = out.room() >= neighbours_.size();
-#pragma omp barrier
+  const bool room = room_.mine();
   Moved moved;  // the two largest distances over all cells
   for (std::size_t s = 0; s < nt; ++s) {
     moved.add(moved_[s].largest);

@@ -92,12 +92,12 @@ class ContactSearch {
   // outside a parallel region.
   void find(std::span<const double> q, ContactList& out);
   // The same in parts, for a caller that runs other work on the same team in between (the model: the
-  // beams). Before the team: reserve_threads. Team functions: find_start (the world vertices of this
-  // thread's cells, no barrier at its end), find_finish (the neighbour list, the pair tests, the list
-  // filled: thread t its block, out.block[t]; no barrier at its end). After a barrier, by one thread:
-  // find_end (the list's size, `blocks` and diagnostics).
+  // beams). Before the team: reserve_threads. Team functions: find_start (the world vertices of this thread's
+  // cells, from their positions alone; no barrier at its end); after a barrier, find_finish (the neighbour
+  // list, the pair tests, the list filled: thread t its block, out.block[t]; no barrier at its end). After a
+  // barrier, by one thread: find_end (the list's size, `blocks` and diagnostics).
   void reserve_threads(std::size_t threads, ContactList& out);
-  void find_start(std::span<const double> q);
+  void find_start(std::span<const double> q, const ContactList& out);
   void find_finish(std::span<const double> q, ContactList& out);
   void find_end(ContactList& out);
   // How often the neighbour list was rebuilt.
@@ -170,6 +170,7 @@ class ContactSearch {
   std::vector<Block> blocks_;  // per thread
   HomeFirstSchedule pair_schedule_;  // the pair tests: each thread its cells' pairs first
   TeamSlots<std::size_t> own_contacts_;  // per thread: the contacts of the pairs it tested of its own part
+  TeamSlots<char> room_;                 // per thread: whether the list had room for every pair (find_start)
   // The overlapping pairs of [first, last) that went to their slots; their contacts, in pair order, into `fill`.
   std::size_t overlapping_pairs(std::size_t first, std::size_t last) const;
   void fill_from_slots(std::size_t first, std::size_t last, Fill& fill) const;

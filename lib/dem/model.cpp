@@ -93,12 +93,15 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
   // wrote. Each thread takes the same cells in every per-cell loop (static_range), so it finds the values
   // where it left them, and the contacts it filled, for the contact terms.
   // With the integrator's loops: its predictor first (each thread its coordinates, the same split as the
-  // per-cell loops here), and its corrector last, once every force is known to be finite.
+  // per-cell loops here: the search's start reads this thread's cells alone), and its corrector last, once
+  // every force is known to be finite.
   as_team(bodies_.n > kMinParallelItems, [&] {
     const auto nt = static_cast<std::size_t>(thread_count());
     if (loops) {
       loops->predict();
+      if (loops->threads() != nt) {
 #pragma omp barrier
+      }
     }
     if (!beams_on) {
       this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
@@ -106,7 +109,10 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
         for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
       });
     }
-    if (contact_list) search_.find_start(q);
+    if (contact_list) search_.find_start(q, contacts_);  // (this thread's cells: their positions alone)
+#pragma omp barrier
+    // (Every position predicted, every thread's part of the search started: the beams and the pairs read the
+    // other threads' cells.)
     if (beams_on) beams_.beam_pass(q);
     if (contact_list) {
       search_.find_finish(q, contacts_);  // (its barriers come after every beam's force)

@@ -291,6 +291,7 @@ struct Gear5::Loops final : System::StepLoops {
   const PartLayout* layout;
   TeamSlots<int>* bad;
   std::atomic<bool> corrected{false};
+  std::size_t threads() const override { return layout->threads(); }
   void predict() override {
     layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
       gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);

@@ -36,14 +36,17 @@ class System {
                          std::span<double> /*a*/) const {}
   // The integrator's per-coordinate loops of one step, for a system that runs them on the team of threads of its
   // own evaluation (two thread starts a step fewer): each thread calls predict() first, on its part of the
-  // coordinates (the same split as coordinate_blocks' loops), and after a barrier the evaluation reads the
-  // predicted state; correct() last, each thread after the accelerations of its part, and only if every
+  // coordinates (the same split as coordinate_blocks' loops), and the evaluation reads the predicted state of
+  // another thread's coordinates only after a barrier; correct() last, each thread after the accelerations of its part, and only if every
   // force is finite (after another barrier: a system that names the term that made a non-finite force needs the
   // predicted state).
   class StepLoops {
    public:
     virtual void predict() = 0;
     virtual void correct() = 0;
+    // The team size whose split the loops follow (in a team of another size, a thread's part of the coordinates
+    // is not its part of the cells: a barrier must follow the predictor).
+    virtual std::size_t threads() const = 0;
 
    protected:
     ~StepLoops() = default;
