@@ -209,8 +209,8 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
   }
 }
 
-// Pair p at state (x, y): bounding circles, then the separating edges, then the overlap geometry, into the
-// pair's own slot. Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap
+// Pair p at state (x, y): bounding circles, then the separating edges, then the overlap geometry, its contact
+// into `fill` (or, null, the pair's own slot). Cheap rejection first: a slack below eps_A / (r_i + r_j) skips no pair convex_overlap
 // would keep, so the order of the tests changes no result, only the time: a pair that overlapped at the last
 // search goes straight to clipping; the others try the facing edges that last separated them (cached per
 // pair), then the current facing edges, which become the cached ones when they separate. Returns whether
