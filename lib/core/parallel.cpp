@@ -40,11 +40,8 @@ PartLayout::PartLayout(std::size_t n, std::size_t blocks, std::size_t threads)
 
 std::size_t PartLayout::index(std::size_t i) const {
   if (gap_ == 0) return i;
-  const std::size_t b = i / len_, j = i % len_;
-  // The thread whose part of the block holds j (static_range: the first len % threads parts one longer).
-  const std::size_t q = len_ / threads_, longer = len_ % threads_;
-  const std::size_t t = j < longer * (q + 1) ? j / (q + 1) : longer + (j - longer * (q + 1)) / q;
-  return i + gap_ * (b * threads_ + t);
+  const std::size_t b = i / len_;
+  return i + gap_ * (b * threads_ + owner_of(i % len_, len_, threads_));
 }
 
 void set_threads(int requested) {

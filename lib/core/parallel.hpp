@@ -37,6 +37,12 @@ inline Range static_range(std::size_t items, std::size_t t, std::size_t nt) {
   return {first, first + (t < longer ? q + 1 : q)};
 }
 
+// The thread whose part (static_range) of `items` holds `item`.
+inline std::size_t owner_of(std::size_t item, std::size_t items, std::size_t nt) {
+  const std::size_t q = items / nt, longer = items % nt;
+  return item < longer * (q + 1) ? item / (q + 1) : longer + (item - longer * (q + 1)) / q;
+}
+
 // This thread's part of `items` under the static schedule of the enclosing team (all of them outside one).
 inline Range this_thread_range(std::size_t items) {
   return static_range(items, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));

@@ -302,6 +302,7 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (blocks_.size() < threads) blocks_.resize(threads);
   if (thread_pairs_.size() < threads) thread_pairs_.resize(threads);
   if (out.block.size() < threads) out.block.resize(threads);
+  if (out.touch.size() < threads * threads) out.touch.resize(threads * threads);
   pair_schedule_.reserve(threads);
   own_contacts_.reserve(threads);
   room_.reserve(threads);
@@ -398,6 +399,24 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const std::size_t first = static_cast<std::size_t>(block.offset);
   block.count = static_cast<std::int64_t>(fill.next - first);
   out.block[t] = {first, fill.next};
+  if (nt > 1) set_touch(out, first, fill.next, nt);
+}
+
+void ContactSearch::set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const {
+  const auto t = static_cast<std::size_t>(thread_index());
+  const std::size_t n = bodies_->n;
+  Range* touch = out.touch.data() + t * nt;
+  for (std::size_t u = 0; u < nt; ++u) touch[u] = {last, first};
+  const std::int32_t *ci = out.i.data(), *cj = out.j.data();
+  for (std::size_t k = first; k < last; ++k) {
+    for (const std::int32_t c : {ci[k], cj[k]}) {
+      Range& r = touch[owner_of(static_cast<std::size_t>(c), n, nt)];
+      r.first = std::min(r.first, k);
+      r.last = k + 1;
+    }
+  }
+  for (std::size_t u = 0; u < nt; ++u)
+    if (touch[u].first >= touch[u].last) touch[u] = {0, 0};
 }
 
 std::size_t ContactSearch::overlapping_pairs(std::size_t first, std::size_t last) const {
@@ -555,8 +574,29 @@ void add_contact_forces(const ContactList& c, std::size_t n, std::span<const dou
   add_contact_forces(c, c.size(), n, q, f, Range{0, n});
 }
 
+namespace {
+// The contacts [first, last) onto the cells of `cells`, in contact order.
+void add_contact_range(const ContactList& c, std::size_t first_contact, std::size_t last_contact, std::size_t n,
+                       std::span<const double> q, std::span<double> f, Range cells);
+}  // namespace
+
+void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {
+  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+  const Range cells = this_thread_range(n);
+  for (std::size_t b = 0; b < nt; ++b) {
+    const Range r = b == t ? c.block[b] : c.touch[b * nt + t];
+    add_contact_range(c, r.first, r.last, n, q, f, cells);
+  }
+}
+
 void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
                         std::span<double> f, Range cells) {
+  add_contact_range(c, 0, count, n, q, f, cells);
+}
+
+namespace {
+void add_contact_range(const ContactList& c, std::size_t first_contact, std::size_t last_contact, std::size_t n,
+                       std::span<const double> q, std::span<double> f, Range cells) {
   // One pass over the list in contact order, adding to the cells of `cells` only: each cell receives its
   // contacts in contact order, the same additions in the same order whatever the split. (Every thread reads
   // the whole list but writes, and reads the positions of, its own cells only. A per-cell gather was slower.)
@@ -570,7 +610,7 @@ void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, 
   const std::int32_t *ci = c.i.data(), *cj = c.j.data();
   const double *rx = c.rx.data(), *ry = c.ry.data();
   const std::size_t first = cells.first, width = cells.last - cells.first;
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = first_contact; k < last_contact; ++k) {
     const auto i = static_cast<std::size_t>(ci[k]), j = static_cast<std::size_t>(cj[k]);
     const double fx = pf[k].fx, fy = pf[k].fy;
     if (i - first < width) {  // (unsigned: also false below `first`)
@@ -585,6 +625,8 @@ void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, 
     }
   }
 }
+
+}  // namespace
 
 void ContactList::clear_forces() {
   const std::size_t count = size();

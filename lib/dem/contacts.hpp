@@ -76,6 +76,10 @@ struct ContactList {
   // the same team, each thread on the contacts it wrote, with no barrier between.
   std::vector<Range> block;
   std::size_t blocks = 0;
+  // touch[t·blocks + u]: the entries of block t from the first to the last that touches a cell of thread u's
+  // part of the cells (static_range of the cells over `blocks` threads); empty if none: a thread adding the
+  // forces onto its cells reads only those of the other threads' blocks (set by the search).
+  std::vector<Range> touch;
   // This thread's contacts: its block when the team that filled the list is the calling team, else its
   // static part.
   Range mine() const;
@@ -175,6 +179,8 @@ class ContactSearch {
   // The overlapping pairs of [first, last) that went to their slots; their contacts, in pair order, into `fill`.
   std::size_t overlapping_pairs(std::size_t first, std::size_t last) const;
   void fill_from_slots(std::size_t first, std::size_t last, Fill& fill) const;
+  // out.touch for this thread's block, [first, last), of a team of nt.
+  void set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const;
   std::int64_t rebuilds_ = 0;
   enum class PairState : std::uint8_t { apart, candidate, overlapping };  // bounding circles apart; overlap
   std::vector<PairState> pair_state_;                // one slot per neighbour pair (filled in parallel)
@@ -226,5 +232,9 @@ void add_contact_forces(const ContactList& c, std::size_t n, std::span<const dou
 // thread its cells, the same bits as the whole pass).
 void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
                         std::span<double> f, Range cells);
+// The same, a team function on the team that filled the list (after a barrier behind every term): each thread
+// onto its part of the cells, reading its own block and, of the others, only the entries that touch its cells
+// (ContactList::touch).
+void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
 
 }  // namespace frac::dem

@@ -142,7 +142,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
       for (const Term term : terms_)
         if (term != Term::beams) contact_block_powers(contacts_, contact_term_of(term), count, mine);
-      add_contact_forces(contacts_, count, bodies_.n, q, force_, this_thread_range(bodies_.n));
+      add_contact_forces_of_team(contacts_, bodies_.n, q, force_);
     }
     // The accelerations, and in the same pass whether every force is finite.
     int bad = 0;

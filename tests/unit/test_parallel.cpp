@@ -14,8 +14,8 @@
 
 namespace {
 
-// static_range deals out what OpenMP's schedule(static) deals out: the per-cell force loops and the
-// per-coordinate loops must give a thread the same cells.
+// static_range deals out what OpenMP's schedule(static) deals out (and owner_of inverts it): the per-cell force
+// loops and the per-coordinate loops must give a thread the same cells.
 // After set_threads, every thread of the pool flushes subnormal results and operands to zero (the simulation's
 // floating-point mode, core/float_mode.hpp), and normal numbers are untouched.
 TEST(Parallel, ThreadsFlushSubnormalsToZero) {
@@ -53,6 +53,10 @@ TEST(Parallel, StaticRangeMatchesOpenMPStaticSchedule) {
         for (std::size_t k = 0; k < items; ++k)
           EXPECT_EQ(owner[k] == static_cast<int>(t), k >= r.first && k < r.last)
               << items << " items, " << threads << " threads, item " << k << ", thread " << t;
+      }
+      for (std::size_t k = 0; k < items; ++k) {
+        EXPECT_EQ(frac::owner_of(k, items, static_cast<std::size_t>(threads)), static_cast<std::size_t>(owner[k]))
+            << items << " items, " << threads << " threads, item " << k;
       }
     }
   }
