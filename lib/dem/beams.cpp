@@ -287,33 +287,43 @@ void Beams::strains(std::span<const double> q, std::span<double> out) const {
 }
 
 void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken) {
+  reserve_breaks();
+  as_team(active_.size() > kMinParallelItems, [&] { find_breaks(q, t_eps, t_theta); });
+  apply_breaks(broken);
+}
+
+void Beams::reserve_breaks() {
   const std::size_t count = active_.size();
   const auto most = static_cast<std::size_t>(max_threads());
   breaking_.reserve(most);
   for (std::size_t t = 0; t < most; ++t) breaking_[t].reserve(count);  // (allocates only the first time)
+}
+
+void Beams::find_breaks(std::span<const double> q, double t_eps, double t_theta) {
   // The verdicts in parallel (in blocks, the bound that clears most beams as a vector loop, then the exact rule
-  // for the others), each thread listing the entries of its part that break; then, in list order, the beams
-  // marked broken: the same bits whatever the thread count.
-  std::size_t teams = 1;
-  as_team(count > kMinParallelItems, [&] {
-    const Range mine = this_thread_range(count);
-    std::vector<Breaking>& out = breaking_.mine();
-    out.clear();
-    each_block(q, active_, mine.first, mine.last, [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
-      bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
-      for (std::size_t k = 0; k < n; ++k) {
-        if (blk.near[k] != 0.0) continue;  // holds for sure (breaking_bound_holds)
-        const auto b = static_cast<std::size_t>(active_.beam[start + k]);
-        if (intact_[b] == 0) continue;  // broke before, not yet out of the list
-        Verdict v{0, 0.0};
-        v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
-                                     blk.l0[k], stiffness(b), t_eps, t_theta, v.energy);
-        if (v.mode != 0) out.push_back({start + k, v});
-      }
-    });
-    if (thread_index() == 0) teams = static_cast<std::size_t>(thread_count());
+  // for the others), each thread listing the entries of its part that break; then (apply_breaks), in list
+  // order, the beams marked broken: the same bits whatever the thread count.
+  const std::size_t count = active_.size();
+  const Range mine = this_thread_range(count);
+  std::vector<Breaking>& out = breaking_.mine();
+  out.clear();
+  each_block(q, active_, mine.first, mine.last, [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
+    bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (blk.near[k] != 0.0) continue;  // holds for sure (breaking_bound_holds)
+      const auto b = static_cast<std::size_t>(active_.beam[start + k]);
+      if (intact_[b] == 0) continue;  // broke before, not yet out of the list
+      Verdict v{0, 0.0};
+      v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
+                                   blk.l0[k], stiffness(b), t_eps, t_theta, v.energy);
+      if (v.mode != 0) out.push_back({start + k, v});
+    }
   });
-  for (std::size_t t = 0; t < teams; ++t) {
+  if (thread_index() == 0) break_teams_ = static_cast<std::size_t>(thread_count());
+}
+
+void Beams::apply_breaks(std::vector<BeamBreak>& broken) {
+  for (std::size_t t = 0; t < break_teams_; ++t) {
     for (const Breaking& e : breaking_[t]) {
       const auto b = static_cast<std::size_t>(active_.beam[e.entry]);
       intact_[b] = 0;
@@ -321,6 +331,7 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
       broken.push_back({static_cast<std::int64_t>(b), e.verdict.mode, e.verdict.energy});
       ++broken_in_active_;
     }
+    breaking_[t].clear();
   }
   if (broken_in_active_ * kCompactEvery > active_.size()) compact_active();
 }

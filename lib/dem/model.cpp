@@ -87,6 +87,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
   const auto most = static_cast<std::size_t>(max_threads());
   if (contact_list) search_.reserve_threads(most, contacts_);
   zero_.reserve(most);
+  if (loops && break_after_steps_) beams_.reserve_breaks();
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();
   // One parallel region (core/parallel.hpp: team functions), barriers only where a thread reads what another
@@ -162,7 +163,13 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
 #pragma omp barrier
       bool finite = true;
       for (std::size_t s = 0; s < nt; ++s) finite = finite && zero_[s] == 0.0;
-      if (finite) loops->correct();
+      if (finite) {
+        loops->correct();
+        if (break_after_steps_) {
+#pragma omp barrier
+          beams_.find_breaks(q, material_.t_eps, material_.t_theta);  // (at the corrected positions)
+        }
+      }
     }
   });
   if (contact_list) {
@@ -173,6 +180,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
   }
   double zero = 0;
   for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
+  breaks_found_ = loops != nullptr && break_after_steps_ && zero == 0.0;
   // A non-finite force is traced to the first term that made it (the run stops at this step).
   if (zero != 0.0 && non_finite_term_ == Term::count) blame_non_finite(q, v);
   boundary_power_ = 0;
@@ -210,6 +218,13 @@ void Model::blame_non_finite(std::span<const double> q, std::span<const double> 
       }
     }
   }
+}
+
+bool Model::take_breaks(std::vector<BeamBreak>& broken) {
+  if (!breaks_found_) return false;
+  beams_.apply_breaks(broken);
+  breaks_found_ = false;
+  return true;
 }
 
 void Model::prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const {

@@ -891,6 +891,46 @@ TEST(DemModel, StepOnTheModelsTeamEqualsTheStepOnTeamsOfItsOwn) {
   frac::set_threads(before);
 }
 
+// On two threads, the breaking pass after a step runs on the team of the step's evaluation (after the corrector):
+// the same beams break, in the same order with the same modes and energies, and the same states follow, as with
+// Beams::break_beams after the step (cells pulled apart, so that beams break over several steps).
+TEST(DemModel, BreakingOnTheStepsTeamEqualsTheBreakingPassAfterIt) {
+  SqueezedDisc disc(17, 0.1);
+  const std::size_t n = disc.mesh.cells();
+  const double dt = 1e-7;
+  for (std::size_t cell = 3; cell < n; cell += 7) {  // pulled and pulling away: 2.5 % to ~4.5 % in 30 steps
+    disc.q[cell] += 0.025 * kG;
+    disc.v[cell] += 0.02 * kG / (30 * dt);
+  }
+  const int before = frac::max_threads();
+  frac::set_threads(2);
+  Model team_model(disc.mesh, disc.mat, disc.ph), after_model(disc.mesh, disc.mat, disc.ph);
+  team_model.set_breaking_after_steps(true);
+  frac::dynamics::Gear5 team_gear, after_gear;
+  team_gear.start(team_model, 0, dt, disc.q, disc.v);
+  after_gear.start(after_model, 0, dt, disc.q, disc.v);
+  std::vector<frac::dem::BeamBreak> team_broken, after_broken;
+  std::size_t steps_with_breaks = 0;
+  for (int step = 1; step <= 30; ++step) {
+    team_gear.step(team_model);
+    after_gear.step(after_model);
+    ASSERT_TRUE(team_model.take_breaks(team_broken)) << "step " << step;
+    ASSERT_FALSE(after_model.take_breaks(after_broken));
+    const std::size_t had = after_broken.size();
+    after_model.beams().break_beams(after_gear.q(), disc.mat.t_eps, disc.mat.t_theta, after_broken);
+    steps_with_breaks += after_broken.size() > had;
+    ASSERT_EQ(team_broken.size(), after_broken.size()) << "step " << step;
+    for (std::size_t k = 0; k < team_broken.size(); ++k) {
+      ASSERT_EQ(team_broken[k].beam, after_broken[k].beam) << "step " << step;
+      ASSERT_EQ(team_broken[k].mode, after_broken[k].mode);
+      ASSERT_EQ(team_broken[k].energy, after_broken[k].energy);
+    }
+    for (std::size_t k = 0; k < 3 * n; ++k) ASSERT_EQ(team_gear.q()[k], after_gear.q()[k]) << "step " << step;
+  }
+  EXPECT_GT(steps_with_breaks, 1u) << "the test shows nothing: beams broke at one step or none";
+  frac::set_threads(before);
+}
+
 // The model's force evaluation runs every term on one team of threads (core/parallel.hpp: each thread its
 // cells, its beams and the block of the contact list it filled). On 1, 2 and 3 threads it gives the same bits
 // as the terms composed one by one, each a team of its own: the beams written, the contact terms in engine
