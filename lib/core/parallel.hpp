@@ -149,7 +149,8 @@ class HomeFirstSchedule {
 
  private:
   struct alignas(64) Cursor {
-    std::atomic<std::uint64_t> span{0};  // (front, back) of what is left, from `first`: front << 32 | back
+    // (front, back) of what is left, from `first`: front << 32 | back (a part of fewer than 2^32 items)
+    std::atomic<std::uint64_t> span{0};
     std::size_t first = 0, end = 0;
   };
   void set(std::size_t t, std::size_t items, std::size_t nt);
@@ -195,9 +196,11 @@ class PartLayout {
       range(std::size_t{0}, n_, std::size_t{0});
       return;
     }
-    for (auto t = static_cast<std::size_t>(thread_index()); t < threads_; t += static_cast<std::size_t>(thread_count())) {
+    const auto team = static_cast<std::size_t>(thread_count());
+    for (auto t = static_cast<std::size_t>(thread_index()); t < threads_; t += team) {
       const Range r = static_range(len_, t, threads_);
-      for (std::size_t b = 0; b < blocks_; ++b) range(b * len_ + r.first, b * len_ + r.last, gap_ * (b * threads_ + t));
+      for (std::size_t b = 0; b < blocks_; ++b)
+        range(b * len_ + r.first, b * len_ + r.last, gap_ * (b * threads_ + t));
     }
   }
 
