@@ -274,9 +274,7 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
                               pair.j,
                               0.5 * (inv_d[pair.i] + inv_d[pair.j])};
     if (fill) {
-      put_contact(*fill->out, fill->next++, contact);
-      fill->enclosed += contact.enclosed;
-      fill->multi_crossing += contact.multi_crossing;
+      fill->put(contact);
     } else {
       geometry_[p] = contact;
       pair_state_[p] = PairState::overlapping;
@@ -284,18 +282,20 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
   }
 }
 
-// Entry k of the list: `contact`.
-void ContactSearch::put_contact(ContactList& out, std::size_t k, const PairContact& contact) {
-  out.i[k] = contact.i;
-  out.j[k] = contact.j;
-  out.rx[k] = contact.rx;
-  out.ry[k] = contact.ry;
-  out.nx[k] = contact.nx;
-  out.ny[k] = contact.ny;
-  out.area[k] = contact.area;
-  out.inv_lc[k] = contact.inv_lc;
-  out.fn[k] = 0.0;
-  out.pair_force[k] = {0.0, 0.0};
+void ContactSearch::Fill::put(const PairContact& contact) {
+  const std::size_t k = next++;
+  enclosed += contact.enclosed;
+  multi_crossing += contact.multi_crossing;
+  out->i[k] = contact.i;
+  out->j[k] = contact.j;
+  out->rx[k] = contact.rx;
+  out->ry[k] = contact.ry;
+  out->nx[k] = contact.nx;
+  out->ny[k] = contact.ny;
+  out->area[k] = contact.area;
+  out->inv_lc[k] = contact.inv_lc;
+  out->fn[k] = 0.0;
+  out->pair_force[k] = {0.0, 0.0};
 }
 
 void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
@@ -368,8 +368,6 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   });
   candidates_.mine() = candidates;
   const std::size_t own = fill.next - start;
-  block.enclosed = fill.enclosed;
-  block.multi_crossing = fill.multi_crossing;
   if (nt > 1) {
     own_contacts_.mine() = own;
 #pragma omp barrier
@@ -392,10 +390,10 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
       }
     }
     if (t == 0) fill_from_slots(pair_schedule_.split(0), pair_schedule_.end(0), fill);
-    block.enclosed = fill.enclosed;
-    block.multi_crossing = fill.multi_crossing;
     block.offset = static_cast<std::int64_t>(offset);
   }
+  block.enclosed = fill.enclosed;
+  block.multi_crossing = fill.multi_crossing;
   const std::size_t first = static_cast<std::size_t>(block.offset);
   block.count = static_cast<std::int64_t>(fill.next - first);
   out.block[t] = {first, fill.next};
@@ -429,11 +427,7 @@ std::size_t ContactSearch::overlapping_pairs(std::size_t first, std::size_t last
 void ContactSearch::fill_from_slots(std::size_t first, std::size_t last, Fill& fill) const {
   const PairState* state = pair_state_.data();
   for (std::size_t p = first; p < last; ++p) {
-    if (state[p] != PairState::overlapping) continue;
-    const PairContact& contact = geometry_[p];
-    put_contact(*fill.out, fill.next++, contact);
-    fill.enclosed += contact.enclosed;
-    fill.multi_crossing += contact.multi_crossing;
+    if (state[p] == PairState::overlapping) fill.put(geometry_[p]);
   }
 }
 
@@ -575,26 +569,7 @@ void add_contact_forces(const ContactList& c, std::size_t n, std::span<const dou
 }
 
 namespace {
-// The contacts [first, last) onto the cells of `cells`, in contact order.
-void add_contact_range(const ContactList& c, std::size_t first_contact, std::size_t last_contact, std::size_t n,
-                       std::span<const double> q, std::span<double> f, Range cells);
-}  // namespace
-
-void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  const Range cells = this_thread_range(n);
-  for (std::size_t b = 0; b < nt; ++b) {
-    const Range r = b == t ? c.block[b] : c.touch[b * nt + t];
-    add_contact_range(c, r.first, r.last, n, q, f, cells);
-  }
-}
-
-void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
-                        std::span<double> f, Range cells) {
-  add_contact_range(c, 0, count, n, q, f, cells);
-}
-
-namespace {
+// The contacts [first_contact, last_contact) onto the cells of `cells`, in contact order.
 void add_contact_range(const ContactList& c, std::size_t first_contact, std::size_t last_contact, std::size_t n,
                        std::span<const double> q, std::span<double> f, Range cells) {
   // One pass over the list in contact order, adding to the cells of `cells` only: each cell receives its
@@ -627,6 +602,20 @@ void add_contact_range(const ContactList& c, std::size_t first_contact, std::siz
 }
 
 }  // namespace
+
+void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {
+  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+  const Range cells = this_thread_range(n);
+  for (std::size_t b = 0; b < nt; ++b) {
+    const Range r = b == t ? c.block[b] : c.touch[b * nt + t];
+    add_contact_range(c, r.first, r.last, n, q, f, cells);
+  }
+}
+
+void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
+                        std::span<double> f, Range cells) {
+  add_contact_range(c, 0, count, n, q, f, cells);
+}
 
 void ContactList::clear_forces() {
   const std::size_t count = size();

@@ -129,10 +129,12 @@ class ContactSearch {
   std::vector<GridBody> grid_body_;
   void rebuild(std::span<const double> q, ContactList& out);  // a team function, barriers at its ends
   // Where a thread puts the contacts of the pairs it tests in order: the list's entries from `next` on.
+  struct PairContact;
   struct Fill {
     ContactList* out;
     std::size_t next;
     std::int64_t enclosed, multi_crossing;
+    void put(const PairContact& contact);  // at entry next, counted in the diagnostics
   };
   // (fill: null for a pair another thread's part holds: its contact goes to the pair's slot.)
   bool test_pair(std::size_t p, const double* x, const double* y, double slack, Fill* fill);
@@ -194,7 +196,6 @@ class ContactSearch {
     double inv_lc;  // 1/L_c of the pair
   };
   std::vector<PairContact> geometry_;  // one slot per neighbour pair, set where overlapping
-  static void put_contact(ContactList& out, std::size_t k, const PairContact& contact);
 };
 
 struct ContactParameters {
