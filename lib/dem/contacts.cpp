@@ -603,10 +603,11 @@ void add_contact_range(const ContactList& c, std::size_t first_contact, std::siz
 
 }  // namespace
 
-void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {
+void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f,
+                                Range blocks) {
   const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
   const Range cells = this_thread_range(n);
-  for (std::size_t b = 0; b < nt; ++b) {
+  for (std::size_t b = blocks.first; b < std::min(blocks.last, nt); ++b) {
     const Range r = b == t ? c.block[b] : c.touch[b * nt + t];
     add_contact_range(c, r.first, r.last, n, q, f, cells);
   }

@@ -235,7 +235,9 @@ void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, 
                         std::span<double> f, Range cells);
 // The same, a team function on the team that filled the list (after a barrier behind every term): each thread
 // onto its part of the cells, reading its own block and, of the others, only the entries that touch its cells
-// (ContactList::touch).
-void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f);
+// (ContactList::touch). The blocks [blocks.first, blocks.last) only, in block order (a caller that adds the
+// first block before that barrier, on the first thread, and the others after it, adds them in the same order).
+void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f,
+                                Range blocks = {0, SIZE_MAX});
 
 }  // namespace frac::dem

@@ -128,6 +128,9 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       for (const Term term : terms_)
         if (term != Term::beams) terms |= contact_term_bit(contact_term_of(term));
       contact_terms(terms, contacts_, contact_parameters_, bodies_, q, v, mine);
+      // The first thread adds its own block's forces onto its cells before the barrier: they come first onto
+      // them, and no other thread writes them (the others wait less for it, since it reads more of theirs).
+      if (thread_index() == 0) add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{0, 1});
     }
 #pragma omp barrier
     // The list's size and diagnostics by one thread (read after the team); each thread the power sums of the
@@ -143,7 +146,8 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
       for (const Term term : terms_)
         if (term != Term::beams) contact_block_powers(contacts_, contact_term_of(term), count, mine);
-      add_contact_forces_of_team(contacts_, bodies_.n, q, force_);
+      const std::size_t first_block = thread_index() == 0 ? 1 : 0;  // (the first thread's own: added above)
+      add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{first_block, nt});
     }
     // The accelerations, and in the same pass whether every force is finite.
     int bad = 0;
