@@ -3,6 +3,9 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -44,9 +47,16 @@ class Deflater {
   Deflater& operator=(const Deflater&) = delete;
   ~Deflater() { deflateEnd(&z_); }
   // The deflate blocks of `in` into `out`: the last of the stream (`last`), or ending on a byte boundary after
-  // an empty stored block (a sync flush), so that the next part's blocks can follow.
+  // an empty stored block (a sync flush), so that the next part's blocks can follow. A part that would not
+  // compress (noise: the low mantissa bytes of doubles) goes into stored blocks, which cost a copy.
   void part(std::span<const unsigned char> in, bool last, std::vector<unsigned char>& out) {
     deflateReset(&z_);
+    const bool store = incompressible(in);
+    if (store != stored_) {
+      if (deflateParams(&z_, store ? 0 : 1, store ? Z_DEFAULT_STRATEGY : Z_RLE) != Z_OK)
+        throw RuntimeError("zlib: cannot set the deflate level");
+      stored_ = store;
+    }
     out.resize(compressBound(static_cast<uLong>(in.size())) + 16);
     z_.next_in = const_cast<unsigned char*>(in.data());  // (zlib's API is not const-correct; it only reads)
     z_.avail_in = static_cast<uInt>(in.size());
@@ -59,7 +69,21 @@ class Deflater {
   }
 
  private:
+  // Whether the bytes' entropy, which bounds what a code for single bytes saves, is above 7.9 bits a byte
+  // (at most 1.25 % to gain; runs, which the run-length strategy would find, lower the entropy too).
+  static bool incompressible(std::span<const unsigned char> in) {
+    if (in.size() < 4096) return false;
+    std::array<std::uint32_t, 256> count{};
+    for (const unsigned char b : in) ++count[b];
+    double sum = 0.0;  // Σ c·log2 c
+    for (const std::uint32_t c : count)
+      if (c > 0) sum += static_cast<double>(c) * std::log2(static_cast<double>(c));
+    const auto n = static_cast<double>(in.size());
+    const double entropy = std::log2(n) - sum / n;  // bits a byte
+    return entropy > 7.9;
+  }
   z_stream z_{};
+  bool stored_ = false;  // the stream's level: 0 (stored) or 1 with the run-length strategy
 };
 
 }  // namespace

@@ -74,6 +74,8 @@ SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsi
   const bool compress = frame_size_ >= 64;
   value_ = create_extendible(group_, "value", ftype, frame_dims_, compress);
   compressed_ = compress && encodes_chunks(value_type_, ftype);
+  // The frames of a chunk are buffered until it is full: room for them at once (no copies as it grows).
+  if (rows_per_chunk_ > 1) value_buffer_.reserve(rows_per_chunk_ * frame_size_ * value_bytes_);
   group_.set_attr("unit", "s", "time");
   if (!unit.empty()) group_.set_attr("unit", unit, "value");
 }

@@ -87,3 +87,27 @@ TEST(ChunkCodec, RefusesPartialElements) {
   EXPECT_THROW(io::shuffle_deflate(data, 8, 16), RuntimeError);
   EXPECT_THROW(io::shuffle_deflate(data, 8, 8), RuntimeError);
 }
+
+TEST(ChunkCodec, NoiseGoesIntoStoredBlocksAndTheRestIsCompressed) {
+  // 512 KiB of bytes: 256 KiB of noise (4 parts), then 256 KiB of short runs of a few values. The noise is
+  // stored (a copy: its size, plus a 5-byte header per stored block of at most 65535 bytes); the runs compress
+  // to a small fraction; both decode to the data.
+  const std::size_t half = 256 * 1024;
+  std::vector<unsigned char> data(2 * half);
+  std::uint64_t s = 99;
+  for (std::size_t i = 0; i < half; ++i) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    data[i] = static_cast<unsigned char>(s >> 56);
+  }
+  for (std::size_t i = half; i < data.size(); ++i) data[i] = static_cast<unsigned char>((i / 64) % 4);
+  const auto stream = io::shuffle_deflate(data, 1, data.size());
+  const std::vector<unsigned char> copy(stream.begin(), stream.end());
+  EXPECT_EQ(decode(copy, 1, data.size()), data);
+  // The first block, after the zlib header: not final, type 00 (stored), then (byte-aligned) its length.
+  ASSERT_GT(copy.size(), 7u);
+  EXPECT_EQ(copy[2] & 0x07, 0);
+  EXPECT_EQ(copy[3] | copy[4] << 8, 65535);
+  const double stored_noise = static_cast<double>(half) + 5.0 * 8;  // 4 parts, two blocks each
+  EXPECT_GT(static_cast<double>(copy.size()), static_cast<double>(half));
+  EXPECT_LT(static_cast<double>(copy.size()), stored_noise + 0.05 * static_cast<double>(half));
+}
