@@ -129,7 +129,8 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
         if (term != Term::beams) terms |= contact_term_bit(contact_term_of(term));
       contact_terms(terms, contacts_, contact_parameters_, bodies_, q, v, mine);
       // The first thread adds its own block's forces onto its cells before the barrier: they come first onto
-      // them, and no other thread writes them (the others wait less for it, since it reads more of theirs).
+      // them, and no other thread writes them. (It is the one that waits here: it reads the first rows of the
+      // next thread's cells, whose loops then wait for its copies of their lines to be invalidated.)
       if (thread_index() == 0) add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{0, 1});
     }
 #pragma omp barrier

@@ -149,14 +149,14 @@ bool within_reach(const Vec2* v, std::size_t count, std::span<const Vec2> p, std
 }
 
 // n perpendicular to the contact line (p2 - p1 != 0), oriented from i toward j. (The orientation from the
-// unscaled perpendicular, so that it does not wait for the square root and the division.)
+// unscaled perpendicular, so that it does not wait for the square root and the division; lengths ≥ eps_L ~
+// 1e-11 m: no under/overflow.)
 Vec2 line_normal(const Vec2& p1, const Vec2& p2, const Vec2& dc) {
   const Vec2 t = p2 - p1;
   const Vec2 m = perp(t);
   const double s = m.dot(dc);
   const bool flip = s < 0.0 || (s == 0.0 && (m.x() < 0.0 || (m.x() == 0.0 && m.y() < 0.0)));
-  const double scale = (flip ? -1.0 : 1.0) / std::sqrt(t.squaredNorm());  // lengths ≥ eps_L ~ 1e-11 m: no under/overflow
-  return m * scale;
+  return m * ((flip ? -1.0 : 1.0) / std::sqrt(t.squaredNorm()));
 }
 
 // n along the line of centres; +x when the centres coincide.
