@@ -15,24 +15,19 @@ goal=${GOAL:-1.0}
 out=bench/out
 mkdir -p "$out"
 # shellcheck source=bench/lib.sh
-source "$(dirname "$0")/lib.sh"  # time_once, median_of
+source "$(dirname "$0")/lib.sh"  # median_wall
 require_gnu_time
 "$bin/mesh-gen" voronoi --shape disc --diameter 0.4 --cells 1100 --seed 7 -q -o "$out/over-time-disc.h5"
 
 echo "explosion, $threads threads, $repeats runs every $every s, $(date -u +%Y-%m-%d)"
 echo
-echo "| UTC | median wall s | runs |"
-echo "|---|---|---|"
+echo "| UTC | median wall s |"
+echo "|---|---|"
 under=0
 for ((k = 0; k < rounds; k++)); do
-  walls=()
-  for ((r = 0; r < repeats; r++)); do
-    read -r w _ <<<"$(time_once "$bin/dem-run" --threads "$threads" --scene data/scenes/explosion.ini \
-      "$out/over-time-disc.h5" -q -o "$out/over-time-explosion.h5")"
-    walls+=("$w")
-  done
-  m=$(median_of "${walls[@]}")
-  echo "| $(date -u +%H:%M) | $m | ${walls[*]} |"
+  m=$(median_wall "$bin/dem-run" --threads "$threads" --scene data/scenes/explosion.ini "$out/over-time-disc.h5" -q \
+    -o "$out/over-time-explosion.h5")
+  echo "| $(date -u +%H:%M) | $m |"
   if awk -v m="$m" -v g="$goal" 'BEGIN { exit !(m < g) }'; then under=$((under + 1)); fi
   if ((k + 1 < rounds)); then sleep "$every"; fi
 done
