@@ -10,6 +10,7 @@ int max_threads() { return omp_get_max_threads(); }
 int thread_count() { return omp_get_num_threads(); }
 int thread_index() { return omp_get_thread_num(); }
 bool in_parallel() { return omp_in_parallel() != 0; }
+unsigned processor_count() { return static_cast<unsigned>(omp_get_num_procs()); }
 
 void HomeFirstSchedule::reserve(std::size_t threads) {
   if (threads <= capacity_) return;

@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include "core/team_barrier.hpp"
+
 namespace frac {
 
 inline constexpr std::size_t kMinParallelItems = 256;
@@ -65,23 +67,33 @@ inline double sum_of_blocks(const double* out, std::size_t count, std::size_t bl
   return s;
 }
 
-// Team functions. A fork and a join cost about twice a barrier (3.1 against 1.4 µs on this 2-core machine),
-// so the loops of one DEM force evaluation share one parallel region: each is a team function, run by every
-// thread of the region it is called from, each thread taking its part (static_range, or OpenMP worksharing
-// that binds to the region), with barriers only where a thread reads what another wrote, and serial parts
-// in `omp single`. Called outside any region, a team function runs every part on the calling thread.
+// Team functions. A fork and a join cost about twice an OpenMP barrier (3.1 against 1.4 µs on this 2-core
+// machine), so the loops of one DEM force evaluation share one parallel region: each is a team function, run by
+// every thread of the region it is called from, each thread taking its part (static_range, or OpenMP
+// worksharing that binds to the region), with barriers (team_barrier, core/team_barrier.hpp: 0.36 µs) only
+// where a thread reads what another wrote, and serial parts in `omp single`. Called outside any region, a team
+// function runs every part on the calling thread.
 // (Never call one from inside `single` or `masked`: the others would not reach its barriers.)
 // as_team runs `body` as a team: on the region it is called from, or in a new one when `worth` it (above the
 // sizes where threads pay off), so that a caller outside need not know.
 // (Not worth it, or one thread: no region at all, whose start and end cost a microsecond even for one thread.)
+unsigned processor_count();
 template <class Body>
 void as_team(bool worth, Body&& body) {
   if (in_parallel() || !worth || max_threads() == 1) {
     body();
     return;
   }
+  const auto threads = static_cast<unsigned>(max_threads());
+  TeamBarrier barrier(threads, processor_count());
 #pragma omp parallel
-  body();
+  {
+    // (libgomp may give fewer threads than asked for: then OpenMP's barrier.)
+    TeamBarrier*& current = detail::current_team_barrier();
+    current = static_cast<unsigned>(thread_count()) == threads ? &barrier : nullptr;
+    body();
+    current = nullptr;
+  }
 }
 
 // One value per thread of a team, each on its own cache line: each thread writes its own, and after a

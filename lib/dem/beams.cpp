@@ -93,7 +93,7 @@ void Beams::set_forces(std::span<const double> q, std::span<double> f) const { f
 void Beams::forces(std::span<const double> q, std::span<double> f, bool add) const {
   as_team(active_.size() > kMinParallelItems || n_ > kMinParallelItems, [&] {
     beam_pass(q);
-#pragma omp barrier
+    team_barrier();
     gather(f, add);
   });
 }
@@ -269,7 +269,7 @@ double Beams::energy(std::span<const double> q) const {
     each_response<BeamResponsePart::energy>(
         q, active_, mine.first, mine.last,
         [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
-#pragma omp barrier
+    team_barrier();
     block_sums(energy, count, kBlock, mine, part);
   });
   return sum_of_blocks(part, count, kBlock);

@@ -194,7 +194,7 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
   if (gx > 0) {
     for (std::size_t i = n * t / nt; i < n * (t + 1) / nt; ++i) pairs_of(i);
   }
-#pragma omp barrier
+  team_barrier();
 #pragma omp single
   {
     for (std::size_t b = 0; b < nt; ++b)
@@ -314,7 +314,7 @@ void ContactSearch::find(std::span<const double> q, ContactList& out) {
   reserve_threads(static_cast<std::size_t>(max_threads()), out);
   as_team(bodies_->n > kMinParallelItems, [&] {
     find_start(q, out);
-#pragma omp barrier
+    team_barrier();
     find_finish(q, out);
   });
   find_end(out);
@@ -370,7 +370,7 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   const std::size_t own = fill.next - start;
   if (nt > 1) {
     own_contacts_.mine() = own;
-#pragma omp barrier
+    team_barrier();
     // The list in pair order, the same whatever the thread count: this thread's contacts go after those of the
     // threads before it, their own and those of their last pairs, which others tested (counted from the pairs'
     // states). Its own move down there, then its last pairs' come from their slots. The entries below belong to
@@ -386,7 +386,7 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
         fill_from_slots(pair_schedule_.split(t), pair_schedule_.end(t), fill);
       }
       if (u + 1 < nt) {
-#pragma omp barrier
+        team_barrier();
       }
     }
     if (t == 0) fill_from_slots(pair_schedule_.split(0), pair_schedule_.end(0), fill);

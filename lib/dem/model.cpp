@@ -101,7 +101,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
     if (loops) {
       loops->predict();
       if (loops->threads() != nt) {
-#pragma omp barrier
+        team_barrier();
       }
     }
     if (!beams_on) {
@@ -111,14 +111,14 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       });
     }
     if (contact_list) search_.find_start(q, contacts_);  // (this thread's cells: their positions alone)
-#pragma omp barrier
+    team_barrier();
     // (Every position predicted, every thread's part of the search started: the beams and the pairs read the
     // other threads' cells.)
     if (beams_on) beams_.beam_pass(q);
     if (contact_list) {
       search_.find_finish(q, contacts_);  // (its barriers come after every beam's force)
     } else {
-#pragma omp barrier
+      team_barrier();
     }
     if (beams_on) beams_.gather(force_, false);  // (delivers its power through the beam energy, not as work)
     if (contact_list) {
@@ -133,7 +133,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       // next thread's cells, whose loops then wait for its copies of their lines to be invalidated.)
       if (thread_index() == 0) add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{0, 1});
     }
-#pragma omp barrier
+    team_barrier();
     // The list's size and diagnostics by one thread (read after the team); each thread the power sums of the
     // blocks of contacts that start in its part of the list (added up after the team) and the contacts'
     // forces, summed over the terms, onto its own cells in contact order; no barrier after.
@@ -165,13 +165,13 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
     });
     zero_.mine() = bad ? 1.0 : 0.0;
     if (loops) {
-#pragma omp barrier
+      team_barrier();
       bool finite = true;
       for (std::size_t s = 0; s < nt; ++s) finite = finite && zero_[s] == 0.0;
       if (finite) {
         loops->correct();
         if (break_after_steps_) {
-#pragma omp barrier
+          team_barrier();
           beams_.find_breaks(q, material_.t_eps, material_.t_theta);  // (at the corrected positions)
         }
       }

@@ -2,6 +2,7 @@
 // uses it (core/finite.hpp).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "core/finite.hpp"
 #include "core/float_mode.hpp"
 #include "core/parallel.hpp"
+#include "core/team_barrier.hpp"
 
 namespace {
 
@@ -209,3 +211,65 @@ TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
 }
 
 }  // namespace
+
+// The team barrier (core/team_barrier.hpp): after the k-th barrier every thread sees what every other wrote
+// before it, and none has yet written what comes after it; through both of its ways of waiting: spinning (a
+// core for each thread) and sleeping (more threads than cores: a thread that has spun a little sleeps, and the
+// last to arrive wakes it). 2000 rounds of two barriers each: a lost wake-up would hang the test.
+TEST(Parallel, TeamBarrierSeparatesTheRounds) {
+  for (const unsigned threads : {2u, 3u}) {
+    for (const unsigned cores : {threads, 1u}) {  // (cores < threads: the sleeping way, on any machine)
+      frac::TeamBarrier barrier(threads, cores);
+      constexpr int kRounds = 2000;
+      std::vector<std::atomic<int>> written(threads);
+      std::atomic<int> wrong{0};
+#pragma omp parallel num_threads(static_cast<int>(threads))
+      {
+        if (static_cast<unsigned>(frac::thread_count()) == threads) {
+          const auto t = static_cast<std::size_t>(frac::thread_index());
+          for (int k = 1; k <= kRounds; ++k) {
+            written[t].store(k, std::memory_order_relaxed);
+            barrier.wait();
+            for (std::size_t u = 0; u < threads; ++u)
+              if (written[u].load(std::memory_order_relaxed) != k) wrong.fetch_add(1);
+            barrier.wait();
+          }
+        }
+      }
+      EXPECT_EQ(wrong.load(), 0) << threads << " threads on " << cores << " cores";
+    }
+  }
+}
+
+// as_team's teams use it through team_barrier, and a region not made by as_team gets OpenMP's barrier.
+TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
+  const int before = frac::max_threads();
+  for (const int threads : {2, 3}) {
+    frac::set_threads(threads);
+    std::vector<int> value(static_cast<std::size_t>(threads), 0);
+    int wrong = 0;
+    auto body = [&] {
+      const auto t = static_cast<std::size_t>(frac::thread_index());
+      const auto nt = static_cast<std::size_t>(frac::thread_count());
+      for (int k = 1; k <= 500; ++k) {
+        value[t] = k;
+        frac::team_barrier();
+        int seen = 0;
+        for (std::size_t u = 0; u < nt; ++u) seen += value[u] == k ? 1 : 0;
+        frac::team_barrier();
+        if (seen != static_cast<int>(nt)) {
+#pragma omp atomic
+          ++wrong;
+        }
+      }
+    };
+    frac::as_team(true, body);
+    EXPECT_EQ(wrong, 0) << threads << " threads, as_team";
+    wrong = 0;
+#pragma omp parallel
+    body();
+    EXPECT_EQ(wrong, 0) << threads << " threads, an OpenMP region";
+    frac::team_barrier();  // (outside any region: nothing to wait for)
+  }
+  frac::set_threads(before);
+}
