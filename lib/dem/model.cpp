@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "core/finite.hpp"
 #include "core/parallel.hpp"
@@ -151,7 +152,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{first_block, nt});
     }
     // The accelerations, and in the same pass whether every force is finite.
-    int bad = 0;
+    std::uint64_t bad = 0;
     this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
       double* __restrict out = acc;
       const double* __restrict f = force;
@@ -160,10 +161,10 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       for (std::size_t k = first; k < last; ++k) {
         const double fk = f[k];
         out[k] = fk * w[k];
-        bad |= not_finite(fk);
+        bad |= non_finite_bit(fk);
       }
     });
-    zero_.mine() = bad ? 1.0 : 0.0;
+    zero_.mine() = non_finite_seen(bad) ? 1.0 : 0.0;
     if (loops) {
       team_barrier();
       bool finite = true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -262,7 +263,7 @@ void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, d
 int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
                   double* __restrict r2, double* __restrict r3, double* __restrict r4, double* __restrict r5,
                   double* __restrict v, const double* __restrict a, double half_dt2, double inv_dt) {
-  int bad = 0;
+  std::uint64_t bad = 0;
 #pragma omp simd reduction(| : bad)
   for (std::size_t i = first; i < last; ++i) {
     const double delta = half_dt2 * a[i] - r2[i];
@@ -275,9 +276,9 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
     r5[i] += kGearC[5] * delta;
     const double vi = n1 * inv_dt;
     v[i] = vi;
-    bad |= not_finite(n0) | not_finite(vi);
+    bad |= non_finite_bit(n0) | non_finite_bit(vi);
   }
-  return bad;
+  return non_finite_seen(bad) ? 1 : 0;
 }
 }  // namespace
 
@@ -379,13 +380,13 @@ void VelocityVerlet::step(System& system) {
   system.prescribe(t_, q_, v_est_, a_);
   system.accelerations(t_, q_, v_est_, a_);
   finite_ = sum_over_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
-              int bad = 0;
+              std::uint64_t bad = 0;
 #pragma omp simd reduction(| : bad)
               for (std::size_t i = first; i < last; ++i) {
                 v[i] += h * a[i];  // half kick
-                bad |= not_finite(q[i]) | not_finite(v[i]);
+                bad |= non_finite_bit(q[i]) | non_finite_bit(v[i]);
               }
-              return bad ? 1.0 : 0.0;
+              return non_finite_seen(bad) ? 1.0 : 0.0;
             }) == 0.0;
   const auto fixed = system.prescribed();
   if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
