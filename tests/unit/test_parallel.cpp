@@ -210,7 +210,25 @@ TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
   frac::set_threads(before);
 }
 
-}  // namespace
+// The test in passing (non_finite_bit, OR-ed over a loop): only NaN and ±inf set the top bit, whatever the values
+// OR-ed with them; the largest finite numbers, subnormals, zeros and negative numbers do not.
+TEST(Parallel, NonFiniteBitMarksOnlyNaNAndInfinity) {
+  using limits = std::numeric_limits<double>;
+  const std::vector<double> finite{0.0, -0.0, 1.0, -1.0, limits::max(), -limits::max(), limits::min(),
+                                   limits::denorm_min(), -limits::denorm_min(), 1e-310, 0x1.fffffffffffffp1023};
+  const std::vector<double> not_finite{limits::quiet_NaN(), -limits::quiet_NaN(), limits::signaling_NaN(),
+                                       limits::infinity(), -limits::infinity()};
+  std::uint64_t all = 0;
+  for (const double x : finite) {
+    EXPECT_FALSE(frac::non_finite_seen(frac::non_finite_bit(x))) << x;
+    all |= frac::non_finite_bit(x);
+  }
+  EXPECT_FALSE(frac::non_finite_seen(all));
+  for (const double x : not_finite) {
+    EXPECT_TRUE(frac::non_finite_seen(frac::non_finite_bit(x))) << x;
+    EXPECT_TRUE(frac::non_finite_seen(all | frac::non_finite_bit(x))) << x;
+  }
+}
 
 // The team barrier (core/team_barrier.hpp): after the k-th barrier every thread sees what every other wrote
 // before it, and none has yet written what comes after it; through both of its ways of waiting: spinning (a
@@ -273,3 +291,5 @@ TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
   }
   frac::set_threads(before);
 }
+
+}  // namespace
