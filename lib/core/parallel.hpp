@@ -6,9 +6,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "core/team_barrier.hpp"
+#include "core/thread_team.hpp"
 
 namespace frac {
 
@@ -20,9 +22,10 @@ inline constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
 
 // OpenMP's thread queries, for code that splits work by hand.
 int max_threads();
-int thread_count();  // threads of the enclosing parallel region
+int thread_count();  // threads of the enclosing team (core/thread_team.hpp) or OpenMP region; 1 outside both
 int thread_index();  // this thread's number in it
-bool in_parallel();  // inside an active parallel region (one with more than one thread)
+bool in_parallel();  // inside a team or an active OpenMP region (one with more than one thread)
+unsigned processor_count();  // processors this process may run on
 
 // Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0; and puts each of them,
 // and the caller, in the simulation's floating-point mode (core/float_mode.hpp: subnormals flushed to zero).
@@ -67,33 +70,25 @@ inline double sum_of_blocks(const double* out, std::size_t count, std::size_t bl
   return s;
 }
 
-// Team functions. A fork and a join cost about twice an OpenMP barrier (3.1 against 1.4 µs on this 2-core
-// machine), so the loops of one DEM force evaluation share one parallel region: each is a team function, run by
-// every thread of the region it is called from, each thread taking its part (static_range, or OpenMP
-// worksharing that binds to the region), with barriers (team_barrier, core/team_barrier.hpp: 0.36 µs) only
-// where a thread reads what another wrote, and serial parts in `omp single`. Called outside any region, a team
-// function runs every part on the calling thread.
-// (Never call one from inside `single` or `masked`: the others would not reach its barriers.)
-// as_team runs `body` as a team: on the region it is called from, or in a new one when `worth` it (above the
-// sizes where threads pay off), so that a caller outside need not know.
-// (Not worth it, or one thread: no region at all, whose start and end cost a microsecond even for one thread.)
-unsigned processor_count();
+// Team functions. The loops of one DEM force evaluation share one parallel region: each is a team function, run
+// by every thread of the team it is called from, each thread taking its part (static_range), with barriers
+// (team_barrier, core/team_barrier.hpp) only where a thread reads what another wrote, and serial parts on the
+// first thread (followed by a barrier when the others read what it wrote). Called outside any team, a team
+// function runs every part on the calling thread. (Never call one from a part only some threads run: the others
+// would not reach its barriers.)
+// as_team runs `body` as a team: on the team it is called from, or on the thread team (core/thread_team.hpp:
+// a region costs two spins on a shared counter, against 3.4 µs for OpenMP's) when `worth` it (above the sizes
+// where threads pay off), so that a caller outside need not know. (Not worth it, or one thread: the caller alone.)
+// `body` must not throw (as in an OpenMP region, an exception ends the program).
+void run_as_team(ThreadTeam::Job job, void* body);
 template <class Body>
 void as_team(bool worth, Body&& body) {
   if (in_parallel() || !worth || max_threads() == 1) {
     body();
     return;
   }
-  const auto threads = static_cast<unsigned>(max_threads());
-  TeamBarrier barrier(threads, processor_count());
-#pragma omp parallel
-  {
-    // (libgomp may give fewer threads than asked for: then OpenMP's barrier.)
-    TeamBarrier*& current = detail::current_team_barrier();
-    current = static_cast<unsigned>(thread_count()) == threads ? &barrier : nullptr;
-    body();
-    current = nullptr;
-  }
+  using B = std::remove_reference_t<Body>;
+  run_as_team([](void* b) noexcept { (*static_cast<B*>(b))(); }, const_cast<void*>(static_cast<const void*>(&body)));
 }
 
 // One value per thread of a team, each on its own cache line: each thread writes its own, and after a
@@ -228,8 +223,7 @@ void for_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
     range(std::size_t{0}, n);
     return;
   }
-#pragma omp parallel
-  this_thread_coordinate_ranges(n, blocks, range);
+  as_team(true, [&] { this_thread_coordinate_ranges(n, blocks, range); });
 }
 
 // The same loop with a sum: range(first, last) returns a double, and the results are added. The order of
@@ -237,10 +231,23 @@ void for_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
 // or NaN: the finiteness checks).
 template <class Body>
 double sum_over_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
-  if (n <= kMinParallelCoordinates) return range(std::size_t{0}, n);
+  constexpr std::size_t kMostThreads = 64;  // (a team's partial sums on the stack; more threads: one does it all)
+  if (n <= kMinParallelCoordinates || static_cast<std::size_t>(max_threads()) > kMostThreads)
+    return range(std::size_t{0}, n);
+  struct alignas(64) Part {
+    double sum = 0;
+  };
+  Part part[kMostThreads];
+  std::size_t threads = 1;
+  as_team(true, [&] {
+    double sum = 0;
+    this_thread_coordinate_ranges(n, blocks, [&](std::size_t first, std::size_t last) { sum += range(first, last); });
+    const auto t = static_cast<std::size_t>(thread_index());
+    part[t].sum = sum;
+    if (t == 0) threads = static_cast<std::size_t>(thread_count());
+  });
   double sum = 0;
-#pragma omp parallel reduction(+ : sum)
-  this_thread_coordinate_ranges(n, blocks, [&](std::size_t first, std::size_t last) { sum += range(first, last); });
+  for (std::size_t t = 0; t < threads; ++t) sum += part[t].sum;
   return sum;
 }
 

@@ -28,13 +28,8 @@ class TeamBarrier {
   std::uint32_t spins_;
 };
 
-// Inside a team function: the barrier of the team as_team made (OpenMP's when the region is not one of
-// as_team's); nothing outside a parallel region.
+// Inside a team function: the barrier of the team as_team runs it on (core/thread_team.hpp); OpenMP's inside an
+// OpenMP region; nothing outside both.
 void team_barrier();
-
-namespace detail {
-// The barrier team_barrier uses on this thread (set by as_team for each thread of its region; null: OpenMP's).
-TeamBarrier*& current_team_barrier();
-}  // namespace detail
 
 }  // namespace frac

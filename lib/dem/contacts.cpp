@@ -93,8 +93,7 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
   const std::size_t n = bodies_->n;
   const double* x = q.data();
   const double* y = x + n;
-#pragma omp single
-  {
+  if (thread_index() == 0) {  // (one thread; the others wait at the barrier after)
     ++rebuilds_;
     ref_.assign(q.begin(), q.end());
     // The old list, indexed by its first cell, so that a pair found again keeps what it has learnt (its
@@ -150,6 +149,7 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
       grid_y_ = gy;
     }
   }
+  team_barrier();
   // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (in thread
   // order) into their own buffers, joined in thread order: the same list whatever the thread count.
   const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
@@ -195,8 +195,7 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
     for (std::size_t i = n * t / nt; i < n * (t + 1) / nt; ++i) pairs_of(i);
   }
   team_barrier();
-#pragma omp single
-  {
+  if (t == 0) {  // (one thread; the others wait at the barrier after)
     for (std::size_t b = 0; b < nt; ++b)
       neighbours_.insert(neighbours_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
     const std::size_t pairs = neighbours_.size();
@@ -207,6 +206,7 @@ void ContactSearch::rebuild(std::span<const double> q, ContactList& out) {
     out.reserve(pairs + pairs / 4);  // (at most one contact per pair)
     pair_schedule_.reset(pairs, nt);
   }
+  team_barrier();
 }
 
 // Pair p at state (x, y): bounding circles, then the separating edges, then the overlap geometry, its contact
@@ -349,8 +349,8 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   if (stale) {
     rebuild(q, out);
   } else if (!room) {
-#pragma omp single
-    out.reserve(neighbours_.size());
+    if (t == 0) out.reserve(neighbours_.size());
+    team_barrier();
   }
   const double* x = q.data();
   const double* y = x + bodies_->n;
@@ -620,8 +620,10 @@ void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, 
 
 void ContactList::clear_forces() {
   const std::size_t count = size();
-#pragma omp parallel for schedule(static) if (count > kMinParallelItems)
-  for (std::size_t k = 0; k < count; ++k) pair_force[k] = {0.0, 0.0};
+  as_team(count > kMinParallelItems, [&] {
+    const Range mine = this_thread_range(count);
+    for (std::size_t k = mine.first; k < mine.last; ++k) pair_force[k] = {0.0, 0.0};
+  });
 }
 
 }  // namespace frac::dem

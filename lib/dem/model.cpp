@@ -138,8 +138,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
     // The list's size and diagnostics by one thread (read after the team); each thread the power sums of the
     // blocks of contacts that start in its part of the list (added up after the team) and the contacts'
     // forces, summed over the terms, onto its own cells in contact order; no barrier after.
-#pragma omp single nowait
-    {
+    if (thread_index() == 0) {
       teams_ = nt;
       if (contact_list) search_.find_end(contacts_);
     }
@@ -261,15 +260,17 @@ std::array<double, 2> Model::kinetic_energy(std::span<const double> v) const {
   part.resize(blocks);
   const double* m = bodies_.mass.data();
   const double* inertia = bodies_.inertia.data();
-#pragma omp parallel for schedule(static) if (n > kMinParallelCoordinates)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    double et = 0, er = 0;
-    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
-      et += 0.5 * m[k] * (v[k] * v[k] + v[n + k] * v[n + k]);
-      er += 0.5 * inertia[k] * v[2 * n + k] * v[2 * n + k];
+  as_team(n > kMinParallelCoordinates, [&] {
+    const Range mine = this_thread_range(blocks);
+    for (std::size_t b = mine.first; b < mine.last; ++b) {
+      double et = 0, er = 0;
+      for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+        et += 0.5 * m[k] * (v[k] * v[k] + v[n + k] * v[n + k]);
+        er += 0.5 * inertia[k] * v[2 * n + k] * v[2 * n + k];
+      }
+      part[b] = {et, er};
     }
-    part[b] = {et, er};
-  }
+  });
   double et = 0, er = 0;
   for (const auto& p : part) {
     et += p[0];

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -114,18 +116,21 @@ std::span<const unsigned char> shuffle_deflate(std::span<const unsigned char> da
   auto& out = parts;  // (this thread's buffers: a thread_local named in the region would be each thread's own)
   std::vector<uLong> adler(count);
   std::string error;
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
-  for (std::size_t p = 0; p < count; ++p) {
-    try {
-      thread_local Deflater deflater;
-      const auto in = input.subspan(p * kPartBytes, std::min(kPartBytes, chunk_bytes - p * kPartBytes));
-      deflater.part(in, p + 1 == count, out[p]);
-      adler[p] = adler32(adler32(0, nullptr, 0), in.data(), static_cast<uInt>(in.size()));
-    } catch (const std::exception& e) {  // (no exception may leave the region)
-#pragma omp critical(frac_chunk_codec)
-      error = e.what();
+  std::mutex error_mutex;
+  std::atomic<std::size_t> next{0};  // (the parts dealt out one at a time, to whichever thread is free)
+  as_team(count > 1, [&] {
+    for (std::size_t p; (p = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
+      try {
+        thread_local Deflater deflater;
+        const auto in = input.subspan(p * kPartBytes, std::min(kPartBytes, chunk_bytes - p * kPartBytes));
+        deflater.part(in, p + 1 == count, out[p]);
+        adler[p] = adler32(adler32(0, nullptr, 0), in.data(), static_cast<uInt>(in.size()));
+      } catch (const std::exception& e) {  // (no exception may leave the team)
+        const std::lock_guard lock(error_mutex);
+        error = e.what();
+      }
     }
-  }
+  });
   if (!error.empty()) throw RuntimeError(error);
   stream.assign({0x78, 0x01});  // deflate, 32 KiB window, fastest level; (0x7801 % 31 == 0)
   uLong checksum = adler32(0, nullptr, 0);

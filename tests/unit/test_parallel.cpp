@@ -4,21 +4,24 @@
 
 #include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "core/finite.hpp"
 #include "core/float_mode.hpp"
 #include "core/parallel.hpp"
 #include "core/team_barrier.hpp"
+#include "core/thread_team.hpp"
 
 namespace {
 
 // static_range deals out what OpenMP's schedule(static) deals out (and owner_of inverts it): the per-cell force
 // loops and the per-coordinate loops must give a thread the same cells.
-// After set_threads, every thread of the pool flushes subnormal results and operands to zero (the simulation's
+// After set_threads, every thread of the team flushes subnormal results and operands to zero (the simulation's
 // floating-point mode, core/float_mode.hpp), and normal numbers are untouched.
 TEST(Parallel, ThreadsFlushSubnormalsToZero) {
   const int before = frac::max_threads();
@@ -26,13 +29,12 @@ TEST(Parallel, ThreadsFlushSubnormalsToZero) {
     frac::set_threads(threads);
     std::vector<double> product(static_cast<std::size_t>(threads), -1), sum(product), normal(product);
     volatile double tiny = 1e-300, scale = 1e-10, subnormal = 4.9e-324, one = 1.0;  // (not folded at compile time)
-#pragma omp parallel
-    {
+    frac::as_team(true, [&] {  // (on the thread team: each of its threads)
       const auto t = static_cast<std::size_t>(frac::thread_index());
       product[t] = tiny * scale;       // 1e-310: a subnormal result
       sum[t] = subnormal + subnormal;  // subnormal operands
       normal[t] = tiny * one;
-    }
+    });
     if (!frac::flush_subnormals_to_zero()) GTEST_SKIP() << "no flush-to-zero mode on this target";
     // (Compared as bit patterns: in this mode a comparison reads a subnormal operand as zero.)
     for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t) {
@@ -290,6 +292,44 @@ TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
     frac::team_barrier();  // (outside any region: nothing to wait for)
   }
   frac::set_threads(before);
+}
+
+// The thread team (core/thread_team.hpp): every run runs the job once on each of its threads, the caller as
+// thread 0, each with its own index and the team's size, and returns only when all are done (what they wrote is
+// seen after); after runs far apart (the workers asleep: 20 ms is far beyond their spinning), with more threads
+// than cores, and after resizing.
+TEST(Parallel, ThreadTeamRunsTheJobOnEveryThreadOnce) {
+  frac::ThreadTeam team;
+  for (const unsigned threads : {1u, 2u, 3u, 2u}) {
+    for (const unsigned cores : {threads, 1u}) {
+      team.resize(threads, cores);
+      ASSERT_EQ(team.size(), threads);
+      struct Context {
+        std::vector<std::atomic<int>> runs;
+        std::vector<unsigned> count;
+        std::thread::id caller;
+        std::atomic<int> caller_was_zero{0};
+      } c{std::vector<std::atomic<int>>(threads), std::vector<unsigned>(threads, 0), std::this_thread::get_id(), {}};
+      for (int round = 1; round <= 300; ++round) {
+        if (round % 100 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        team.run(
+            [](void* p) {
+              auto& ctx = *static_cast<Context*>(p);
+              const frac::TeamMember& me = frac::team_member();
+              ctx.runs[me.index].fetch_add(1);
+              ctx.count[me.index] = me.count;
+              if (std::this_thread::get_id() == ctx.caller && me.index == 0) ctx.caller_was_zero.fetch_add(1);
+            },
+            &c);
+        for (unsigned t = 0; t < threads; ++t) {
+          ASSERT_EQ(c.runs[t].load(), round) << threads << " threads on " << cores << " cores, thread " << t;
+          ASSERT_EQ(c.count[t], threads);
+        }
+      }
+      EXPECT_EQ(c.caller_was_zero.load(), 300);
+      EXPECT_EQ(frac::team_member().count, 0u);  // (the caller is no member once the run is over)
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,31 @@
+#pragma once
+// Waiting on a 32-bit word shared by threads: a pause in a spin loop, and sleeping until the word changes (a
+// futex on Linux; elsewhere a yield, and the caller loops). For the team barrier and the thread team.
+#include <atomic>
+#include <cstdint>
+
+namespace frac::spin {
+
+// Spins before sleeping: ~0.3-1 ms of pause instructions with a core for each thread (longer than any wait
+// inside a force evaluation or between two: no system call in the steady state); a few µs when threads share
+// cores, where the one awaited may need the core of the one spinning.
+inline constexpr std::uint32_t kSpinsOwnCore = 20000;
+inline constexpr std::uint32_t kSpinsSharedCores = 64;
+inline std::uint32_t spins(unsigned threads, unsigned cores) {
+  return threads > cores ? kSpinsSharedCores : kSpinsOwnCore;
+}
+
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
+
+// Sleeps while word == expected (returns at once when it is not; may return early: the caller checks again).
+void sleep_while(std::atomic<std::uint32_t>& word, std::uint32_t expected);
+// Wakes every thread sleeping on word.
+void wake_all(std::atomic<std::uint32_t>& word);
+
+}  // namespace frac::spin
