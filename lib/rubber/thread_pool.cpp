@@ -1,60 +1,26 @@
 #include "rubber/thread_pool.hpp"
 
+#include "core/parallel.hpp"
+
 namespace frac::rubber {
 
 ThreadPool::ThreadPool(int threads) {
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  workers_ = threads;
-  threads_.reserve(static_cast<std::size_t>(threads - 1));
-  for (int w = 1; w < threads; ++w) threads_.emplace_back([this, w] { loop(w); });
-}
-
-ThreadPool::~ThreadPool() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  start_.notify_all();
-  for (auto& t : threads_) t.join();
+  const unsigned cores = processor_count();
+  team_.resize(threads <= 0 ? cores : static_cast<unsigned>(threads), cores);
 }
 
 void ThreadPool::run(Job job, void* context) {
-  if (workers_ == 1) {
-    job(context, 0, 1);
-    return;
-  }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    job_ = job;
-    context_ = context;
-    pending_ = workers_ - 1;
-    ++generation_;
-  }
-  start_.notify_all();
-  job(context, 0, workers_);
-  std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return pending_ == 0; });
-}
-
-void ThreadPool::loop(int worker) {
-  unsigned long seen = 0;
-  for (;;) {
+  struct Call {
     Job job;
     void* context;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      start_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
-      job = job_;
-      context = context_;
-    }
-    job(context, worker, workers_);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (--pending_ == 0) done_.notify_one();
-    }
-  }
+  } call{job, context};
+  team_.run(
+      [](void* p) {
+        const auto& c = *static_cast<const Call*>(p);
+        const TeamMember& me = team_member();
+        c.job(c.context, static_cast<int>(me.index), static_cast<int>(me.count));
+      },
+      &call);
 }
 
 }  // namespace frac::rubber
