@@ -1,5 +1,6 @@
 #pragma once
-// Threading policy of the force loops (OpenMP): a loop runs in parallel only above this many items,
+// Threading policy of the force loops (on a thread team of their own, core/thread_team.hpp; OpenMP only for its
+// `omp simd` loops): a loop runs in parallel only above this many items,
 // below it the fork and join cost more than the work. Each item writes its own slot; sums over items
 // are done afterwards in item order, so results do not depend on the thread count.
 #include <atomic>
@@ -20,14 +21,14 @@ inline constexpr std::size_t kMinParallelItems = 256;
 // finiteness checks) are light: threads pay off from about a thousand coordinates.
 inline constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
 
-// OpenMP's thread queries, for code that splits work by hand.
+// The thread queries, for code that splits work by hand. max_threads: the size of the teams as_team makes.
 int max_threads();
 int thread_count();  // threads of the enclosing team (core/thread_team.hpp) or OpenMP region; 1 outside both
 int thread_index();  // this thread's number in it
 bool in_parallel();  // inside a team or an active OpenMP region (one with more than one thread)
 unsigned processor_count();  // processors this process may run on
 
-// Sets the number of OpenMP threads of the force loops: `requested`, or every core for 0; and puts each of them,
+// Sets the number of threads of the force loops' teams: `requested`, or every core for 0; and puts each of them,
 // and the caller, in the simulation's floating-point mode (core/float_mode.hpp: subnormals flushed to zero).
 void set_threads(int requested);
 
@@ -219,7 +220,7 @@ class PartLayout {
 // threads as above when n is above kMinParallelCoordinates, in one call otherwise.
 template <class Body>
 void for_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
-  if (n <= kMinParallelCoordinates) {
+  if (n <= kMinParallelCoordinates || in_parallel()) {  // (inside a team: all on the calling thread)
     range(std::size_t{0}, n);
     return;
   }
@@ -232,7 +233,7 @@ void for_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
 template <class Body>
 double sum_over_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
   constexpr std::size_t kMostThreads = 64;  // (a team's partial sums on the stack; more threads: one does it all)
-  if (n <= kMinParallelCoordinates || static_cast<std::size_t>(max_threads()) > kMostThreads)
+  if (n <= kMinParallelCoordinates || in_parallel() || static_cast<std::size_t>(max_threads()) > kMostThreads)
     return range(std::size_t{0}, n);
   struct alignas(64) Part {
     double sum = 0;
