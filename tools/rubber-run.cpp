@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
     po::positional_options_description positional;
     positional.add("input", 1);
     const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
-    set_threads(1);  // OpenMP (the shared integrator loops) stays on one thread: the model's own pool runs
-                     // common.threads workers, and idle OpenMP threads spinning beside it would slow them
+    set_threads(1);  // The shared thread team (the integrator's loops) stays on one thread: the model's own pool
+                     // runs common.threads workers, and idle workers spinning beside it would slow them
 
     Scene scene = Scene::load(scene_path, overrides);
 

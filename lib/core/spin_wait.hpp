@@ -8,10 +8,13 @@ namespace frac::spin {
 
 // Spins before sleeping: ~0.3-1 ms of pause instructions with a core for each thread (longer than any wait
 // inside a force evaluation or between two: no system call in the steady state); a few µs when threads share
-// cores, where the one awaited may need the core of the one spinning.
+// cores, where the one awaited may need the core of the one spinning; none with OMP_WAIT_POLICY=passive (as
+// OpenMP's threads: for runs side by side, where a spinning thread takes a core another job needs).
 inline constexpr std::uint32_t kSpinsOwnCore = 20000;
 inline constexpr std::uint32_t kSpinsSharedCores = 64;
+bool passive_wait_policy();  // OMP_WAIT_POLICY is "passive" (any case), read once
 inline std::uint32_t spins(unsigned threads, unsigned cores) {
+  if (passive_wait_policy()) return 0;
   return threads > cores ? kSpinsSharedCores : kSpinsOwnCore;
 }
 

@@ -11,15 +11,14 @@
 // conserved exactly. Each term returns the power it delivers to the bodies (W) for the energy ledger, and
 // adds its force to each contact's slot; one pass (add_contact_forces) then adds the contacts' forces, summed
 // over the terms, to the cells.
-// Threads (OpenMP) share the neighbour-list rebuild (contiguous ranges of cells, joined in order) and the
-// neighbour pairs (circle test, separating edges, overlap geometry): each thread tests its cells' pairs in
-// order and puts their contacts straight into the list, a thread done with its own tests the others' last
-// pairs into the pairs' slots, and the blocks are joined in pair order; the contact terms run on each thread's
-// block, and the contacts' forces are added to the cells in contact order, so results do not depend on the
-// thread count. All of this runs on one team of
-// threads (core/parallel.hpp), with the model's other loops. The overlap of a pair gets a hint
-// (geometry::OverlapHint): the cached facing edges and their reaches, precomputed per cell edge, which leave
-// out clip lines that cannot cut.
+// Threads share the neighbour-list rebuild (contiguous ranges of cells, joined in order) and the neighbour
+// pairs (circle test, separating edges, overlap geometry): each thread tests its cells' pairs in order and puts
+// their contacts straight into the list, a thread done with its own tests the others' last pairs into the
+// pairs' slots, and the blocks are joined in pair order; the contact terms run on each thread's block, and the
+// contacts' forces are added to the cells in contact order, so results do not depend on the thread count. All
+// of this runs on one team of threads (core/parallel.hpp, core/thread_team.hpp), with the model's other loops.
+// The overlap of a pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches,
+// precomputed per cell edge, which leave out clip lines that cannot cut.
 #include <array>
 #include <cstdint>
 #include <span>

@@ -15,7 +15,7 @@ namespace frac::dynamics {
 
 // The step loops are element by element (the same bits on any number of threads) and light: they run on
 // the threads from kMinParallelCoordinates on, split as the model splits its cells (for_coordinate_ranges).
-// (rubber-run runs its own thread pool and keeps OpenMP to one thread, so these loops stay serial there.)
+// (rubber-run runs its own thread pool and keeps the shared team to one thread, so these loops stay serial there.)
 
 IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option) {
   if (name == "gear5") return IntegratorKind::gear5;
