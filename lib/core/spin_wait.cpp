@@ -45,4 +45,24 @@ void wake_all(std::atomic<std::uint32_t>& word) {
 #endif
 }
 
+void WaitCount::advance() {
+  // seq_cst, with the sleeper's count below: either the sleeper sees the new count, or this load sees it
+  // counted and wakes it.
+  count_.fetch_add(1, std::memory_order_seq_cst);
+  if (sleepers_.load(std::memory_order_seq_cst) != 0) wake_all(count_);
+}
+
+std::uint32_t WaitCount::wait_past(std::uint32_t seen, std::uint32_t spins) {
+  std::uint32_t now = count_.load(std::memory_order_acquire);
+  for (std::uint32_t s = 0; now == seen && s < spins; ++s) {
+    cpu_relax();
+    now = count_.load(std::memory_order_acquire);
+  }
+  if (now != seen) return now;
+  sleepers_.fetch_add(1, std::memory_order_seq_cst);
+  while ((now = count_.load(std::memory_order_seq_cst)) == seen) sleep_while(count_, seen);
+  sleepers_.fetch_sub(1, std::memory_order_relaxed);
+  return now;
+}
+
 }  // namespace frac::spin

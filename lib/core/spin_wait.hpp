@@ -31,4 +31,20 @@ void sleep_while(std::atomic<std::uint32_t>& word, std::uint32_t expected);
 // Wakes every thread sleeping on word.
 void wake_all(std::atomic<std::uint32_t>& word);
 
+// A count that threads wait on (a barrier's generation, a team's next run): waiters spin, then sleep, until it
+// moves on; the one that moves it wakes the sleepers, and makes no system call when none sleeps.
+class WaitCount {
+ public:
+  std::uint32_t now() const { return count_.load(std::memory_order_acquire); }
+  // Moves the count on by one (what the caller wrote before goes with it) and wakes the sleepers, if any.
+  void advance();
+  // Returns the count once it is no longer `seen` (what the advancing thread wrote before is visible): spins
+  // `spins` times, then sleeps.
+  std::uint32_t wait_past(std::uint32_t seen, std::uint32_t spins);
+
+ private:
+  std::atomic<std::uint32_t> count_{0};
+  std::atomic<std::uint32_t> sleepers_{0};
+};
+
 }  // namespace frac::spin

@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cstdint>
 
+#include "core/spin_wait.hpp"
+
 namespace frac {
 
 class TeamBarrier {
@@ -22,8 +24,7 @@ class TeamBarrier {
 
  private:
   alignas(64) std::atomic<std::uint32_t> arrived_{0};
-  alignas(64) std::atomic<std::uint32_t> generation_{0};
-  std::atomic<std::uint32_t> sleepers_{0};
+  alignas(64) spin::WaitCount generation_;
   unsigned threads_;
   std::uint32_t spins_;
 };

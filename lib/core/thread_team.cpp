@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "core/spin_wait.hpp"
 
 namespace frac {
 
@@ -23,8 +22,7 @@ void ThreadTeam::resize(unsigned threads, unsigned cores) {
   if (threads == threads_) return;
   if (!workers_.empty()) {
     stop_ = true;
-    go_.fetch_add(1, std::memory_order_seq_cst);
-    spin::wake_all(go_);
+    go_.advance();
     for (std::thread& w : workers_) w.join();
     workers_.clear();
     stop_ = false;
@@ -36,7 +34,7 @@ void ThreadTeam::resize(unsigned threads, unsigned cores) {
   cores_ = std::max(1u, cores);
   barrier_ = std::make_unique<TeamBarrier>(threads, cores_);
   // (The count each worker waits to change: the next run's, whenever the worker gets to look.)
-  const std::uint32_t start = go_.load(std::memory_order_relaxed);
+  const std::uint32_t start = go_.now();
   workers_.reserve(threads - 1);
   for (unsigned k = 1; k < threads; ++k) workers_.emplace_back([this, k, start] { work(k, start); });
 }
@@ -59,26 +57,14 @@ void ThreadTeam::run(Job job, void* context) {
   }
   job_ = job;
   context_ = context;
-  // The job goes with the new count (seq_cst: a worker about to sleep either sees it or is counted and woken).
-  go_.fetch_add(1, std::memory_order_seq_cst);
-  if (sleepers_.load(std::memory_order_seq_cst) != 0) spin::wake_all(go_);
+  go_.advance();  // (the job goes with it)
   member_run(0);
 }
 
 void ThreadTeam::work(unsigned index, std::uint32_t seen) {
   const std::uint32_t spins = spin::spins(threads_, cores_);
   for (;;) {
-    std::uint32_t now = go_.load(std::memory_order_acquire);
-    for (std::uint32_t s = 0; now == seen && s < spins; ++s) {
-      spin::cpu_relax();
-      now = go_.load(std::memory_order_acquire);
-    }
-    if (now == seen) {
-      sleepers_.fetch_add(1, std::memory_order_seq_cst);
-      while ((now = go_.load(std::memory_order_seq_cst)) == seen) spin::sleep_while(go_, seen);
-      sleepers_.fetch_sub(1, std::memory_order_relaxed);
-    }
-    seen = now;
+    seen = go_.wait_past(seen, spins);
     if (stop_) return;
     member_run(index);
   }

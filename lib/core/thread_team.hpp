@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/spin_wait.hpp"
 #include "core/team_barrier.hpp"
 
 namespace frac {
@@ -38,8 +39,7 @@ class ThreadTeam {
   void member_run(unsigned index);
   std::vector<std::thread> workers_;
   std::unique_ptr<TeamBarrier> barrier_;  // (inside the job, and the end of each run)
-  alignas(64) std::atomic<std::uint32_t> go_{0};
-  std::atomic<std::uint32_t> sleepers_{0};
+  alignas(64) spin::WaitCount go_;  // (moves on for each run, and to stop the workers)
   Job job_ = nullptr;
   void* context_ = nullptr;
   bool stop_ = false;
