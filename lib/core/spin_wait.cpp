@@ -17,17 +17,17 @@ namespace frac::spin {
 static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t) &&
               std::atomic<std::uint32_t>::is_always_lock_free);
 
-bool passive_wait_policy() {
-  static const bool passive = [] {
-    const char* policy = std::getenv("OMP_WAIT_POLICY");
-    if (!policy) return false;
-    std::string value(policy);
-    for (char& c : value) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return value == "passive";
-  }();
-  return passive;
+namespace {
+
+void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
 }
 
+// Sleeps while word == expected (returns at once when it is not; may return early: the caller checks again).
 void sleep_while(std::atomic<std::uint32_t>& word, std::uint32_t expected) {
 #if defined(__linux__)
   syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAIT_PRIVATE, expected, nullptr, nullptr, 0);
@@ -37,12 +37,26 @@ void sleep_while(std::atomic<std::uint32_t>& word, std::uint32_t expected) {
 #endif
 }
 
+// Wakes every thread sleeping on word.
 void wake_all(std::atomic<std::uint32_t>& word) {
 #if defined(__linux__)
   syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT_MAX, nullptr, nullptr, 0);
 #else
   (void)word;
 #endif
+}
+
+}  // namespace
+
+bool passive_wait_policy() {
+  static const bool passive = [] {
+    const char* policy = std::getenv("OMP_WAIT_POLICY");
+    if (!policy) return false;
+    std::string value(policy);
+    for (char& c : value) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return value == "passive";
+  }();
+  return passive;
 }
 
 void WaitCount::advance() {

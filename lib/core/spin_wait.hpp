@@ -1,6 +1,6 @@
 #pragma once
-// Waiting on a 32-bit word shared by threads: a pause in a spin loop, and sleeping until the word changes (a
-// futex on Linux; elsewhere a yield, and the caller loops). For the team barrier and the thread team.
+// Waiting on a count shared by threads: pauses in a spin loop, then sleeping until the count moves on (a futex on
+// Linux; elsewhere a yield, and a loop). For the team barrier and the thread team.
 #include <atomic>
 #include <cstdint>
 
@@ -17,19 +17,6 @@ inline std::uint32_t spins(unsigned threads, unsigned cores) {
   if (passive_wait_policy()) return 0;
   return threads > cores ? kSpinsSharedCores : kSpinsOwnCore;
 }
-
-inline void cpu_relax() {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_ia32_pause();
-#elif defined(__aarch64__)
-  asm volatile("yield");
-#endif
-}
-
-// Sleeps while word == expected (returns at once when it is not; may return early: the caller checks again).
-void sleep_while(std::atomic<std::uint32_t>& word, std::uint32_t expected);
-// Wakes every thread sleeping on word.
-void wake_all(std::atomic<std::uint32_t>& word);
 
 // A count that threads wait on (a barrier's generation, a team's next run): waiters spin, then sleep, until it
 // moves on; the one that moves it wakes the sleepers, and makes no system call when none sleeps.

@@ -20,7 +20,6 @@ class TeamBarrier {
   // Returns when every thread of the team has called it (the n-th time for every thread): what each wrote
   // before is visible to all after.
   void wait();
-  unsigned threads() const { return threads_; }
 
  private:
   alignas(64) std::atomic<std::uint32_t> arrived_{0};

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace frac {
 
 TeamMember& team_member() {

@@ -6,7 +6,6 @@
 // the page tables again (the corrector took 2-3 times as long). Here a region costs two spins on a shared counter
 // while the workers are awake (they spin ~1 ms after a run, longer than the serial work between two force
 // evaluations, then sleep on a futex).
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <thread>
