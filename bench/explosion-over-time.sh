@@ -3,8 +3,10 @@
 # pace changes from one quarter hour to the next (the same build 0.70-1.13 s within an hour), so one median
 # says little about how often the goal holds. Every EVERY seconds (default 240), REPEATS runs (default 5);
 # prints the time of day and the median of each round, then how many rounds had a median under the goal.
-# Not part of `make bench` (it takes an hour).
-# Usage: bench/explosion-over-time.sh [BIN_DIR]   (ROUNDS=15, EVERY=240, REPEATS=5, THREADS=2, GOAL=1.0)
+# ONE_THREAD=N adds N runs on one thread to each round and their median: whether a slow round is the
+# machine (both slower) or the threads. Not part of `make bench` (it takes an hour).
+# Usage: bench/explosion-over-time.sh [BIN_DIR]   (ROUNDS=15, EVERY=240, REPEATS=5, THREADS=2, GOAL=1.0,
+#        ONE_THREAD=0)
 set -euo pipefail
 bin=${1:-build/tools}
 rounds=${ROUNDS:-15}
@@ -12,6 +14,7 @@ every=${EVERY:-240}
 repeats=${REPEATS:-5}
 threads=${THREADS:-2}
 goal=${GOAL:-1.0}
+one_thread=${ONE_THREAD:-0}
 out=bench/out
 mkdir -p "$out"
 # shellcheck source=bench/lib.sh
@@ -21,13 +24,24 @@ require_gnu_time
 
 echo "explosion, $threads threads, $repeats runs every $every s, $(date -u +%Y-%m-%d)"
 echo
-echo "| UTC | median wall s |"
-echo "|---|---|"
+if ((one_thread > 0)); then
+  echo "| UTC | median wall s | one thread, median wall s |"
+  echo "|---|---|---|"
+else
+  echo "| UTC | median wall s |"
+  echo "|---|---|"
+fi
 under=0
 for ((k = 0; k < rounds; k++)); do
   m=$(median_wall "$bin/dem-run" --threads "$threads" --scene data/scenes/explosion.ini "$out/over-time-disc.h5" -q \
     -o "$out/over-time-explosion.h5")
-  echo "| $(date -u +%H:%M) | $m |"
+  if ((one_thread > 0)); then
+    m1=$(repeats=$one_thread median_wall "$bin/dem-run" --threads 1 --scene data/scenes/explosion.ini \
+      "$out/over-time-disc.h5" -q -o "$out/over-time-explosion.h5")
+    echo "| $(date -u +%H:%M) | $m | $m1 |"
+  else
+    echo "| $(date -u +%H:%M) | $m |"
+  fi
   if awk -v m="$m" -v g="$goal" 'BEGIN { exit !(m < g) }'; then under=$((under + 1)); fi
   if ((k + 1 < rounds)); then sleep "$every"; fi
 done
