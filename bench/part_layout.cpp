@@ -5,7 +5,7 @@
 //   r1..r5 apart (dem-run today): the integrator's higher derivatives laid out with the threads' parts 2 KB
 //                apart (core/parallel.hpp, PartLayout), q, v, a and the force contiguous, as the model reads them;
 //   all apart  : every array in PartLayout.
-// The loops are those of gear5 (predictor, accelerations a = f/m, corrector) on the same values every step;
+// The loops are gear5's own (dynamics/integrator.hpp) and the accelerations a = f/m, on small values;
 // nanoseconds per coordinate and step, per thread (median of ROUNDS rounds of STEPS steps). What it shows: two
 // cores writing within about a kilobyte of each other's part slow each other's streams (docs/benchmarks.md,
 // sessions 17 and 20).
@@ -13,12 +13,14 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
 
 #include "core/parallel.hpp"
 #include "core/team_barrier.hpp"
+#include "dynamics/integrator.hpp"
 
 namespace {
 
@@ -39,47 +41,26 @@ struct Arrays {
   }
 };
 
-// One step's loops on this thread's parts: predictor, barrier, accelerations, barrier, corrector, barrier.
-// shift(k, s): where array k's part starts (s: the PartLayout shift of the part).
+// One step's loops on this thread's parts: gear5's predictor (dynamics/integrator.hpp), barrier, accelerations,
+// barrier, corrector, barrier. p(k, s): array k, shifted by s (the PartLayout shift of the part) if it is apart.
 void step(Arrays& arr, const frac::PartLayout& layout, unsigned apart) {
+  constexpr double dt = 1e-6;
   auto p = [&](Array k, std::size_t s) { return arr.data[k].data() + ((apart >> k) & 1u ? s : 0); };
   layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-    double *q = p(r0, s), *d1 = p(r1, s), *d2 = p(r2, s), *d3 = p(r3, s), *d4 = p(r4, s), *vel = p(v, s);
-    const double* d5 = p(r5, s);
-#pragma omp simd
-    for (std::size_t i = first; i < last; ++i) {
-      const double e1 = d1[i], e2 = d2[i], e3 = d3[i], e4 = d4[i], e5 = d5[i];
-      q[i] += e1 + e2 + e3 + e4 + e5;
-      d1[i] = e1 + (2 * e2 + 3 * e3 + 4 * e4 + 5 * e5);
-      d2[i] = e2 + (3 * e3 + 6 * e4 + 10 * e5);
-      d3[i] = e3 + (4 * e4 + 10 * e5);
-      d4[i] = e4 + 5 * e5;
-      vel[i] = d1[i] * 1e6;
-    }
+    frac::dynamics::gear5_predict(first, last, p(r0, s), p(r1, s), p(r2, s), p(r3, s), p(r4, s), p(r5, s), p(v, s),
+                                  1 / dt);
   });
   frac::team_barrier();
   layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
     double* acc = p(a, s);
     const double *f = p(force, s), *w = p(inv_mass, s);
 #pragma omp simd
-    for (std::size_t i = first; i < last; ++i) acc[i] = f[i] * w[i] * 1e-30;
+    for (std::size_t i = first; i < last; ++i) acc[i] = f[i] * w[i];
   });
   frac::team_barrier();
   layout.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-    double *q = p(r0, s), *d1 = p(r1, s), *d2 = p(r2, s), *d3 = p(r3, s), *d4 = p(r4, s), *d5 = p(r5, s);
-    double* vel = p(v, s);
-    const double* acc = p(a, s);
-#pragma omp simd
-    for (std::size_t i = first; i < last; ++i) {
-      const double delta = 0.5e-12 * acc[i] - d2[i];
-      q[i] += (3.0 / 16.0) * delta;
-      d1[i] += (251.0 / 360.0) * delta;
-      d2[i] += delta;
-      d3[i] += (11.0 / 18.0) * delta;
-      d4[i] += (1.0 / 6.0) * delta;
-      d5[i] += (1.0 / 60.0) * delta;
-      vel[i] = d1[i] * 1e6;
-    }
+    frac::dynamics::gear5_correct(first, last, p(r0, s), p(r1, s), p(r2, s), p(r3, s), p(r4, s), p(r5, s), p(v, s),
+                                  p(a, s), 0.5 * dt * dt, 1 / dt);
   });
   frac::team_barrier();
 }
@@ -101,6 +82,11 @@ std::vector<double> measure(std::size_t cells, int threads, const Layout& layout
     const double coordinates = static_cast<double>(kBlocks * cells) / threads;
     for (std::size_t t = 0; t < ns.size(); ++t)
       per_round[t].push_back(ns[t] / static_cast<double>(steps) / coordinates);
+  }
+  for (const auto& d : arr.data) {
+    const auto by_size = [](double x, double y) { return std::abs(x) < std::abs(y); };
+    const double largest = *std::max_element(d.begin(), d.end(), by_size);
+    if (!(std::abs(largest) < 1.0)) std::fprintf(stderr, "part-layout: the values grew to %g\n", largest);
   }
   std::vector<double> median;
   for (auto& v : per_round) {

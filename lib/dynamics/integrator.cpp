@@ -238,9 +238,8 @@ void Gear5::apply_prescribed(const System& system, double t) {
   }
 }
 
-namespace {
-// Gear's predictor and corrector on the coordinates [first, last). The arrays do not overlap (restrict), and
-// each value is read once into a local, so no store forces a reload and the loops vectorise.
+// Gear's predictor and corrector (declared in integrator.hpp). The arrays do not overlap (restrict), and each
+// value is read once into a local, so no store forces a reload and the loops vectorise.
 // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders; v = r1/dt.
 void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
                    double* __restrict r2, double* __restrict r3, double* __restrict r4,
@@ -280,7 +279,6 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
   }
   return non_finite_seen(bad) ? 1 : 0;
 }
-}  // namespace
 
 // The step's loops over this thread's parts of the coordinates (PartLayout: r_[1..5] shifted), as a system runs
 // them on its team (System::StepLoops) or the step on teams of their own. The corrector records, per thread,

@@ -143,6 +143,18 @@ int start(Integrator& integrator, System& system, double t0, double dt, std::spa
           std::span<const double> v0, StartKind start, double tau);
 
 // Gear's scheme, also usable directly (tests set exact initial derivatives).
+// Gear's 5th-order loops on the coordinates [first, last) of the scaled derivatives r0 = q, r1 = dt·v, ...,
+// r5 = dt^5/5!·q^(5) (Gear5's state, each a pointer to where coordinate 0 would sit, so that a part laid out
+// apart is passed shifted): the predictor (Pascal's triangle; v = r1/dt), and the corrector from the
+// accelerations a at the predicted state (returns 1 if a corrected q or v is not finite). Element by element:
+// any split of [0, n) gives the same bits.
+void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
+                   double* __restrict r2, double* __restrict r3, double* __restrict r4,
+                   const double* __restrict r5, double* __restrict v, double inv_dt);
+int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
+                  double* __restrict r2, double* __restrict r3, double* __restrict r4, double* __restrict r5,
+                  double* __restrict v, const double* __restrict a, double half_dt2, double inv_dt);
+
 class Gear5 final : public Integrator {
  public:
   void start(System& system, double t0, double dt, std::span<const double> q0,
