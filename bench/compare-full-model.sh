@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Two builds of dem-run compared on the full model at 10^4 cells (the row of bench/dem_run.sh whose goal is
-# missed), not part of `make bench`: it needs two binaries. Usage:
+# Two builds of dem-run compared on the full model at 10^4 cells (the contact-bound row of bench/dem_run.sh),
+# not part of `make bench`: it needs two binaries. Usage:
 #   bench/compare-full-model.sh OLD_DEM_RUN NEW_DEM_RUN   (REPEATS=9, THREADS=1)
 # The cost of a step is the CPU time of 800 steps minus that of 400 (set-up and output do not count), in ns
 # per cell-step. The machine is shared and its pace changes from minute to minute, so the two binaries run

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What each physics term of dem-run costs (issue 7 §3). Usage: bench/dem_terms.sh [BIN_DIR]
+# What each physics term of dem-run costs. Usage: bench/dem_terms.sh [BIN_DIR]
 # (REPEATS=3, CELLS_SIDE=100, STEPS=200)
 # The same scene, the explosion (data/scenes/explosion.ini: the paper's kick of 500 J, dt = 1e-6 s) on a
 # CELLS_SIDE² Voronoi rectangle (10^4 cells of the paper's size), with each term on and off: contacts

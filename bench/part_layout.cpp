@@ -2,13 +2,12 @@
 // coordinates (3 blocks, x, y and φ of every cell; each thread its part of every block, as the model's per-cell
 // loops split the cells), timed on one thread and on the team for three layouts of the arrays:
 //   contiguous : every array holds its 3n coordinates in order, so the threads' parts meet at five places;
-//   r1..r5 apart (dem-run today): the integrator's higher derivatives laid out with the threads' parts 2 KB
+//   r1..r5 apart (what dem-run does): the integrator's higher derivatives laid out with the threads' parts 2 KB
 //                apart (core/parallel.hpp, PartLayout), q, v, a and the force contiguous, as the model reads them;
 //   all apart  : every array in PartLayout.
 // The loops are gear5's own (dynamics/integrator.hpp) and the accelerations a = f/m, on small values;
 // nanoseconds per coordinate and step, per thread (median of ROUNDS rounds of STEPS steps). What it shows: two
-// cores writing within about a kilobyte of each other's part slow each other's streams (docs/benchmarks.md,
-// sessions 17 and 20).
+// cores writing within about a kilobyte of each other's part slow each other's streams.
 // Usage: part-layout [CELLS] [STEPS] [ROUNDS]   (1100, 20000, 5: the paper-scale explosion's disc)
 #include <algorithm>
 #include <array>

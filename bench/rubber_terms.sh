@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What each optional physics term of rubber-run costs (issue 7 §3). Usage: bench/rubber_terms.sh [BIN_DIR]
+# What each optional physics term of rubber-run costs. Usage: bench/rubber_terms.sh [BIN_DIR]
 # (REPEATS=3, NODES=400x80, STEPS=400)
 # The same scene, data/scenes/stretch.ini (λ = (1.2, 3), seed crack, clamps) on a NODES lattice, with each
 # switch of its [physics] on and off: damping (Kelvin, uniform and near_failure at the scene's β),

@@ -78,7 +78,7 @@ inline double sum_of_blocks(const double* out, std::size_t count, std::size_t bl
 // function runs every part on the calling thread. (Never call one from a part only some threads run: the others
 // would not reach its barriers.)
 // as_team runs `body` as a team: on the team it is called from, or on the thread team (core/thread_team.hpp:
-// a region costs two spins on a shared counter, against 3.4 µs for OpenMP's) when `worth` it (above the sizes
+// a region costs two spins on a shared counter, where OpenMP's makes system calls) when `worth` it (above the sizes
 // where threads pay off), so that a caller outside need not know. (Not worth it, or one thread: the caller alone.)
 // `body` must not throw (as in an OpenMP region, an exception ends the program).
 void run_as_team(ThreadTeam::Job job, void* body);
@@ -182,8 +182,8 @@ void this_thread_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& ran
 
 // An array only per-coordinate loops touch (gear5's higher derivatives) laid out with the threads' parts apart.
 // Two cores writing within a kilobyte of each other, either side of a split, each pull the other's lines with
-// their prefetchers: on this machine the loops then run 2-4 times slower than on arrays kept apart
-// (docs/benchmarks.md, session 17). The layout keeps the coordinates in order and shifts the part of thread t of
+// their prefetchers: the loops then run 2-4 times slower than on arrays kept apart (build/bench/part-layout
+// measures it). The layout keeps the coordinates in order and shifts the part of thread t of
 // block b (this_thread_coordinate_ranges' split for a team of `threads`) by kPartGap·(b·threads + t) entries; a
 // team of one needs no gap.
 class PartLayout {

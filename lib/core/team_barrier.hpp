@@ -1,7 +1,7 @@
 #pragma once
 // The barrier of the force loops' teams (core/parallel.hpp: as_team). OpenMP's barrier in GCC's libgomp ends
-// with a futex wake, a system call, whether or not a thread sleeps: 1.5 µs a barrier on this 2-core VM, against
-// 0.36 µs for a barrier that only spins (bench/team_barrier.cpp), and a DEM step has five to seven of them. This
+// with a futex wake, a system call, whether or not a thread sleeps, several times the cost of a barrier that
+// only spins (bench/team_barrier.cpp), and a DEM step has five to seven of them. This
 // one spins on a generation count, and a thread that has spun long (a team larger than the cores, a thread
 // descheduled) sleeps on a futex, which the last to arrive wakes only when someone sleeps.
 #include <atomic>

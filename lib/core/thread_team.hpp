@@ -1,11 +1,10 @@
 #pragma once
 // The threads that run the force loops' teams (core/parallel.hpp: as_team): the caller and threads − 1 workers
 // that wait for work by spinning, then sleeping. OpenMP's region in GCC's libgomp starts and ends with futex
-// system calls (3.4 µs for a region on this 2-core VM, bench/team_barrier.cpp), and on a kernel that isolates
-// page tables (PTI) without PCID, as this VM's, every system call also empties the TLB: the loops after it walk
-// the page tables again (the corrector took 2-3 times as long). Here a region costs two spins on a shared counter
-// while the workers are awake (they spin ~1 ms after a run, longer than the serial work between two force
-// evaluations, then sleep on a futex).
+// system calls (bench/team_barrier.cpp times both), and on a kernel that isolates page tables (PTI) without
+// PCID every system call also empties the TLB, so the loops after it walk the page tables again. Here a region
+// costs two spins on a shared counter while the workers are awake (they spin ~1 ms after a run, longer than the
+// serial work between two force evaluations, then sleep on a futex).
 #include <cstdint>
 #include <memory>
 #include <thread>
