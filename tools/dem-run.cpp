@@ -23,12 +23,15 @@ int main(int argc, char** argv) {
         "dem-run", "--scene SCENE.ini MESH|- [--section.key VALUE ...] -o RUN.h5",
         "Runs the polygon DEM on a mesh from mesh-gen voronoi under a scene (data/scenes/*.ini): beams, overlap "
         "contacts, damping and friction as the scene's [physics] names them; Gear's 5th-order predictor-corrector "
-        "or velocity Verlet. Any scene key can be overridden, e.g. --material.t_eps 0.02. Writes the mesh, the "
+        "or velocity Verlet. Any scene key can be overridden, e.g. --material.t_eps 0.02 (or material.t_eps = 0.02 in "
+        "a --config file, which the command line overrides in turn). Writes the mesh, the "
         "resolved scene, trajectory frames, observables and beam-break events (docs/SCHEMA.md).",
         "  mesh-gen voronoi --shape disc --diameter 0.4 --cells 1100 --seed 7 -o disc.h5\n"
         "  dem-run --scene data/scenes/explosion.ini disc.h5 -o explosion.h5\n"
         "  dem-run --scene data/scenes/explosion.ini disc.h5 --material.t_eps 0.02 --integrator.kind verlet -o e.h5\n"
-        "  dem-run --scene data/scenes/explosion.ini disc.h5 --threads 2 -o explosion.h5   # same bits, faster"};
+        "  dem-run --scene data/scenes/explosion.ini disc.h5 --threads 2 -o explosion.h5   # same bits, faster\n"
+        "  printf 'scene = data/scenes/explosion.ini\\n[material]\\nt_eps = 0.02\\n' > e.cfg && "
+        "dem-run --config e.cfg disc.h5 -o e.h5"};
     std::vector<std::pair<std::string, std::string>> overrides;
     const auto args = cli::split_overrides(argc, argv, overrides);
     cli::CommonOptions common;
@@ -36,10 +39,10 @@ int main(int argc, char** argv) {
     po::options_description desc("Options");
     desc.add_options()("input", po::value(&input)->required(), "mesh file, or - for standard input")(
         "scene", po::value(&scene_path)->required(), "scene file (INI)");
-    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed | cli::kThreads);
+    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed | cli::kThreads | cli::kConfig);
     po::positional_options_description positional;
     positional.add("input", 1);
-    const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
+    const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional, &overrides);
     set_threads(common.threads);
 
     Scene scene = Scene::load(scene_path, overrides);

@@ -114,11 +114,14 @@ int triangular(int argc, const char* const* argv, const std::string& command_lin
 int check(int argc, const char* const* argv, const std::string&) {
   const cli::ToolSpec spec{"mesh-gen check", "FILE|-",
                            "Validates a mesh file (convex counter-clockwise cells, areas, unique beams between cells "
-                           "that share a side, bond lengths) and prints a summary. Exit 2 when an invariant fails.",
+                           "that share a side, bond lengths) and prints a summary (none with -q). Exit 2 when an "
+                           "invariant fails.",
                            "  mesh-gen check block.h5\n  mesh-gen voronoi --cells 40x20 | mesh-gen check -"};
+  cli::CommonOptions common;
   std::string input;
   po::options_description desc("Options");
   desc.add_options()("input", po::value(&input)->required(), "mesh file, or - for standard input");
+  cli::add_common(desc, common, cli::kQuiet | cli::kConfig);
   po::positional_options_description positional;
   positional.add("input", 1);
   cli::parse(argc, argv, spec, desc, positional);
@@ -127,12 +130,12 @@ int check(int argc, const char* const* argv, const std::string&) {
   io::check_header(root, {"mesh", "run"});
   const auto report = io::mesh_kind(root) == io::MeshKind::cells ? mesh::check_cell_mesh(io::read_cell_mesh(root))
                                                                  : mesh::check_node_mesh(io::read_node_mesh(root));
-  std::cout << input << "\n" << report.summary;
+  if (!common.quiet) std::cout << input << "\n" << report.summary;
   if (!report.ok()) {
     for (const auto& f : report.failures) std::cerr << "mesh-gen check: " << input << ": " << f << "\n";
     throw InputError(input + ": invalid mesh (" + std::to_string(report.failures.size()) + " failed invariants)");
   }
-  std::cout << "ok\n";
+  if (!common.quiet) std::cout << "ok\n";
   return kExitOk;
 }
 

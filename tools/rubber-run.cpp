@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
         "Runs Marder's rubber lattice (pair and three-body forces whose continuum limit is Mooney-Rivlin rubber, "
         "bonds failing through a cut-off) on a triangular mesh from mesh-gen triangular, under a scene "
         "(data/scenes/stretch.ini: a pre-stretched strip with a seeded crack; wave.ini: a pulse in a stretched "
-        "sheet). Velocity Verlet by default. Any scene key can be overridden, e.g. --law.cutoff_length 3.6e-3. "
+        "sheet). Velocity Verlet by default. Any scene key can be overridden, e.g. --law.cutoff_length 3.6e-3 (or "
+        "law.cutoff_length = 3.6e-3 in a --config file, which the command line overrides in turn). "
         "Warns when the cut-off stiffens the far field or a bond family is not Mooney-Rivlin. Writes the mesh, the "
         "resolved scene, frames, observables (energies, crack tip and speed) and bond-break events "
         "(docs/rubber-run.md, docs/SCHEMA.md).",
@@ -41,10 +42,10 @@ int main(int argc, char** argv) {
     po::options_description desc("Options");
     desc.add_options()("input", po::value(&input)->required(), "mesh file, or - for standard input")(
         "scene", po::value(&scene_path)->required(), "scene file (INI)");
-    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed | cli::kThreads);
+    cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kSeed | cli::kThreads | cli::kConfig);
     po::positional_options_description positional;
     positional.add("input", 1);
-    const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional);
+    const auto vm = cli::parse(static_cast<int>(args.size()), args.data(), spec, desc, positional, &overrides);
     set_threads(1);  // The shared thread team (the integrator's loops) stays on one thread: the model's own pool
                      // runs common.threads workers, and idle workers spinning beside it would slow them
 

@@ -140,7 +140,7 @@ int body(int argc, char** argv) {
   desc.add(measure).add(theory_opts);
   po::options_description out_opts("Output");
   out_opts.add_options()("format", po::value(&format)->default_value(format), "hdf5 or text (key value lines)");
-  cli::add_common(out_opts, common, cli::kOutput | cli::kQuiet | cli::kConfig);
+  cli::add_common(out_opts, common, cli::kOutput | cli::kQuiet | cli::kConfig, cli::kOutputHdf5OrText);
   desc.add(out_opts);
   po::positional_options_description positional;
   positional.add("input", 1);

@@ -11,14 +11,14 @@
 
 namespace frac::cli {
 
-void add_common(po::options_description& desc, CommonOptions& common, unsigned which) {
+void add_common(po::options_description& desc, CommonOptions& common, unsigned which, const char* output_help) {
   auto add = desc.add_options();
-  if (which & kOutput)
-    add("output,o", po::value(&common.output)->default_value("-"),
-        "output file; '-' writes the HDF5 file to standard output");
+  if (which & kOutput) add("output,o", po::value(&common.output)->default_value("-"), output_help);
   if (which & kSeed) add("seed", po::value(&common.seed)->default_value(1), "seed of the random generator");
   if (which & kQuiet) add("quiet,q", po::bool_switch(&common.quiet), "print nothing but errors");
-  if (which & kConfig) add("config", po::value(&common.config), "read options from FILE (key = value lines)");
+  if (which & kConfig)
+    add("config", po::value(&common.config), "read options from FILE: 'key = value' lines, key the long option name "
+        "(the command line wins)");
   if (which & kThreads)
     add("threads", po::value(&common.threads)->default_value(1)->notifier([](int t) {
       if (t < 0) throw UsageError("--threads: must not be negative");
@@ -28,8 +28,35 @@ void add_common(po::options_description& desc, CommonOptions& common, unsigned w
         "OMP_WAIT_POLICY=passive");
 }
 
+namespace {
+
+// Stores the options of a --config file in vm; its scene keys go to the front of `scene_overrides`
+// (when given; else they are unknown options).
+void store_config(const std::string& path, po::options_description& desc, po::variables_map& vm,
+                  std::vector<std::pair<std::string, std::string>>* scene_overrides) {
+  std::ifstream in(path);
+  if (!in) throw UsageError("--config: cannot read '" + path + "'");
+  try {
+    const auto parsed = po::parse_config_file(in, desc, scene_overrides != nullptr);
+    std::vector<std::pair<std::string, std::string>> scene_keys;
+    for (const auto& o : parsed.options) {
+      if (!o.unregistered) continue;
+      if (o.string_key.find('.') == std::string::npos)
+        throw UsageError("--config " + path + ": unknown option '" + o.string_key + "'");
+      scene_keys.emplace_back(o.string_key, o.value.empty() ? std::string() : o.value.front());
+    }
+    po::store(parsed, vm);  // skips the unregistered scene keys; keeps what the command line set
+    if (scene_overrides) scene_overrides->insert(scene_overrides->begin(), scene_keys.begin(), scene_keys.end());
+  } catch (const po::error& e) {
+    throw UsageError("--config " + path + ": " + e.what());
+  }
+}
+
+}  // namespace
+
 po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec, po::options_description& desc,
-                        const po::positional_options_description& positional) {
+                        const po::positional_options_description& positional,
+                        std::vector<std::pair<std::string, std::string>>* scene_overrides) {
   po::options_description general("General");
   general.add_options()("help,h", "show this help and exit")("version", "show the version and exit");
   po::options_description all;
@@ -47,12 +74,7 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
       std::cout << spec.name << " " << kVersion << " (file format " << kFormatMajor << "." << kFormatMinor << ")\n";
       throw Exit{kExitOk};
     }
-    if (vm.count("config")) {
-      const auto path = vm["config"].as<std::string>();
-      std::ifstream in(path);
-      if (!in) throw UsageError("--config: cannot read '" + path + "'");
-      po::store(po::parse_config_file(in, desc), vm);
-    }
+    if (vm.count("config")) store_config(vm["config"].as<std::string>(), desc, vm, scene_overrides);
     po::notify(vm);
   } catch (const po::error& e) {
     throw UsageError(e.what());

@@ -33,7 +33,11 @@ struct CommonOptions {
   int threads = 1;  // 0: all cores
 };
 enum Common : unsigned { kOutput = 1, kQuiet = 2, kSeed = 4, kConfig = 8, kThreads = 16 };
-void add_common(po::options_description& desc, CommonOptions& common, unsigned which);
+// `output_help` describes -o for a tool whose output is not (only) an HDF5 file.
+inline constexpr const char* kOutputHdf5OrText =
+    "output file; '-' writes standard output: the HDF5 file, or with --format text the key value lines";
+void add_common(po::options_description& desc, CommonOptions& common, unsigned which,
+                const char* output_help = "output file; '-' writes the HDF5 file to standard output");
 
 // Thrown to end a tool early with an exit code (after --help or --version).
 struct Exit {
@@ -41,9 +45,13 @@ struct Exit {
 };
 
 // Parse argv into vm (notifying the bound variables). Handles --help and --version (throws Exit{0})
-// and --config FILE (the same options, one "key = value" a line). Throws UsageError on bad options.
+// and --config FILE (the same options, one "key = value" a line; the command line wins). Throws
+// UsageError on bad options. With `scene_overrides` (the command line's, from split_overrides), the
+// file may also hold scene keys, "section.key = value" or "key = value" under "[section]": they go
+// before the command line's, which win.
 po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec, po::options_description& desc,
-                        const po::positional_options_description& positional = {});
+                        const po::positional_options_description& positional = {},
+                        std::vector<std::pair<std::string, std::string>>* scene_overrides = nullptr);
 
 // Splits scene overrides out of argv: every "--section.key VALUE" or "--section.key=VALUE" (a dotted
 // option name) goes to `overrides` as {"section.key", "VALUE"}; the rest stays in the returned argv
