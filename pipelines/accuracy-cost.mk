@@ -61,7 +61,7 @@ $(AC)/dem/dt/%.row: $(AC)/dem/dt/%.h5 $(AC)/dem/dt/$(AC_DEM_REF).h5
 	dt=$$($(BIN)/observables $< --parameter derived.dt); \
 	steps=$$(h5dump -a /steps $< | awk '/\(0\)/ { print $$2 }'); loop=$$(h5dump -a /provenance/wall_seconds $< | awk '/\(0\)/ { print $$2 }'); \
 	cells=$$(h5ls $</particles/cells/mass | sed 's/.*{\([0-9]*\)}.*/\1/'); \
-	drift=$$($(BIN)/observables $< --columns energy_balance | \
+	drift=$$($(BIN)/observables $< --columns energy_balance | grep -v "^#" | \
 	  awk -F, 'NR == 2 { e0 = $$2 } NR > 1 { d = $$2 - e0; if (d < 0) d = -d; if (d > m) m = d } END { printf "%.4g", m / e0 }'); \
 	err=$$($(BIN)/observables $< --compare $(word 2,$^) | awk '$$1 == "rms_position_difference" { r = $$2 } $$1 == "max_position_difference" { m = $$2 } END { print r "," m }'); \
 	echo "$$kind-$$start,$$kind,$$start,$$level,$$dt,$$(awk -v o=$$omega -v d=$$dt 'BEGIN { printf "%.4g", o * d }'),$$steps,$$wall,$$loop,$$(awk -v m=$$mem 'BEGIN { printf "%.1f", m / 1024 }'),$$(awk -v c=$$cells -v s=$$steps -v w=$$loop 'BEGIN { printf "%.4g", c * s / (w > 0 ? w : 1e-6) }'),$$drift,$$err," > $@
@@ -248,7 +248,7 @@ $(AC)/rubber/dt/%.row: $(AC)/rubber/dt/%.h5 $(AC)/rubber/dt/$(AC_RUB_REF).h5
 	steps=$$(h5dump -a /steps $< | awk '/\(0\)/ { print $$2 }'); \
 	loop=$$(grep -o '[0-9.e+-]* s wall' $(AC)/rubber/dt/$*.log | tail -1 | cut -d' ' -f1); \
 	nodes=$$(h5ls $</particles/nodes/mass | sed 's/.*{\([0-9]*\)}.*/\1/'); \
-	drift=$$($(BIN)/observables $< --columns kinetic_energy,total_energy | $(AC_RUB_DRIFT)); \
+	drift=$$($(BIN)/observables $< --columns kinetic_energy,total_energy | grep -v "^#" | $(AC_RUB_DRIFT)); \
 	err=$$($(BIN)/observables $< --compare $(word 2,$^) | awk '$$1 == "rms_position_difference" { r = $$2 } $$1 == "max_position_difference" { m = $$2 } END { print r "," m }'); \
 	dev=$$($(BIN)/wave-speed $< --range $(AC_RUB_RANGE) --format text 2>/dev/null | $(AC_RUB_SPEED) | cut -d, -f4); \
 	echo "$$kind-zero,$$kind,zero,$$level,$$dt,$$(awk -v o=$$omega -v d=$$dt 'BEGIN { printf "%.4g", o * d }'),$$steps,$$wall,$$loop,$$(awk -v m=$$mem 'BEGIN { printf "%.1f", m / 1024 }'),$$(awk -v c=$$nodes -v s=$$steps -v w=$$loop 'BEGIN { printf "%.4g", c * s / (w > 0 ? w : 1e-6) }'),$$drift,$$err,$$dev" > $@
@@ -275,7 +275,7 @@ $(AC)/rubber/res/%.row: $(AC)/rubber/res/%.h5
 	nodes=$$(h5ls $</particles/nodes/mass | sed 's/.*{\([0-9]*\)}.*/\1/'); \
 	steps=$$(h5dump -a /steps $< | awk '/\(0\)/ { print $$2 }'); \
 	loop=$$(grep -o '[0-9.e+-]* s wall' $(AC)/rubber/res/$*.log | tail -1 | cut -d' ' -f1); \
-	drift=$$($(BIN)/observables $< --columns kinetic_energy,total_energy | $(AC_RUB_DRIFT)); \
+	drift=$$($(BIN)/observables $< --columns kinetic_energy,total_energy | grep -v "^#" | $(AC_RUB_DRIFT)); \
 	speed=$$($(BIN)/wave-speed $< --range $(AC_RUB_RANGE) --format text 2>/dev/null | $(AC_RUB_SPEED)); \
 	echo "$*,$$nodes,$$($(BIN)/observables $< --parameter derived.spacing),$$steps,$$($(BIN)/observables $< --parameter derived.dt),$$wall,$$loop,$$(awk -v m=$$mem 'BEGIN { printf "%.1f", m / 1024 }'),$$(awk -v c=$$nodes -v s=$$steps -v w=$$loop 'BEGIN { printf "%.4g", c * s / (w > 0 ? w : 1e-6) }'),$$drift,$$speed" > $@
 

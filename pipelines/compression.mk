@@ -23,7 +23,7 @@ $(CC)/run-s%.h5: $(CC)/mesh-s%.h5 data/scenes/confined-compression.ini | build
 # σ(ε) per seed, compression positive (the paper plots it so).
 $(CC)/curve-s%.csv: $(CC)/run-s%.h5
 	@{ echo "strain,stress_Pa,intact_beams"; \
-	   $(BIN)/observables $< --columns axial_strain,stress,intact_beams | tail -n +2 | \
+	   $(BIN)/observables $< --columns axial_strain,stress,intact_beams | grep -v "^#" | tail -n +2 | \
 	   awk -F, '{ printf "%.6g,%.6g,%d\n", -$$2, -$$3, $$4 }'; } > $@
 
 # Per seed: failure strain (at the stress peak), peak stress, drop after the peak, broken fraction.

@@ -81,8 +81,8 @@ $(EM)/moduli.png: $(EM)/moduli.csv pipelines/plots/moduli.gp
 EM_S1 := $(firstword $(EM_SEEDS))
 $(EM)/curves.csv: $(EM)/runs/E5e8-tension-s$(EM_S1).h5 $(EM)/runs/E5e8-compression-s$(EM_S1).h5
 	@{ echo "axial_strain,stress_Pa"; \
-	   $(BIN)/observables $(word 2,$^) --columns axial_strain,stress | tail -n +2 | cut -d, -f2,3 | tac; \
-	   $(BIN)/observables $< --columns axial_strain,stress | tail -n +2 | cut -d, -f2,3; } > $@
+	   $(BIN)/observables $(word 2,$^) --columns axial_strain,stress | grep -v "^#" | tail -n +2 | cut -d, -f2,3 | tac; \
+	   $(BIN)/observables $< --columns axial_strain,stress | grep -v "^#" | tail -n +2 | cut -d, -f2,3; } > $@
 
 $(EM)/curves.png: $(EM)/curves.csv pipelines/plots/curves.gp
 	@gnuplot -e "csv='$<'; out='$(EM)/curves'" pipelines/plots/curves.gp

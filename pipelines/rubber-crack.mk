@@ -92,7 +92,7 @@ $(RC)/row-%.csv: $(RC)/%.h5
 	@lx=$$($(call rc_attr,$<,loading.stretch_x)); ly=$$($(call rc_attr,$<,loading.stretch_y)); \
 	 ct=$$($(call rc_attr,$<,derived.lattice.c_T_x)); cl=$$($(call rc_attr,$<,derived.lattice.c_L_x)); \
 	 uc=$$($(call rc_attr,$<,law.cutoff_length)); d=$$($(call rc_attr,$<,derived.spacing)); \
-	 $(BIN)/observables $< --columns crack_tip_reference_x,total_energy,bonds_past_cutoff | tail -n +2 | \
+	 $(BIN)/observables $< --columns crack_tip_reference_x,total_energy,bonds_past_cutoff | grep -v "^#" | tail -n +2 | \
 	 awk -F, -v name=$* -v lx=$$lx -v ly=$$ly -v ct=$$ct -v cl=$$cl -v uc=$$uc -v d=$$d ' \
 	   NR == 1 { x0 = $$2; e0 = $$3 } { t[NR] = $$1; x[NR] = $$2; e = $$3; b = $$4; n = NR } \
 	   END { adv = (x[n] - x0) / d; v = ""; \

@@ -5,6 +5,8 @@
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/provenance.hpp"
+#include "io/header.hpp"
 #include "io/hdf5.hpp"
 #include "io/xdmf.hpp"
 #include "render/run_picture.hpp"
@@ -27,8 +29,8 @@ int run(int argc, char** argv) {
       "  h5-xdmf explosion.h5 --fragments fragments.h5 -o explosion-fragments.xmf\n"
       "  h5-xdmf crack.h5 --flavour xdmf2 -o crack-visit.xmf\n"
       "  paraview explosion.xmf"};
+  cli::CommonOptions common;
   std::string input, output, fragments, polygons, flavour;
-  bool quiet = false;
   std::size_t limit = 500000;
   po::options_description desc("Options");
   desc.add_options()
@@ -40,9 +42,8 @@ int run(int argc, char** argv) {
        "--polygon-limit vertices), on, off")
       ("polygon-limit", po::value(&limit)->default_value(limit), "vertices up to which --polygons auto writes them")
       ("flavour", po::value(&flavour)->default_value("xdmf3"), "how frames are referenced: xdmf3 (ParaView's Xdmf3 "
-       "readers) or xdmf2 (HyperSlab DataItems: VisIt, ParaView's legacy XDMF Reader)")
-      ("quiet,q", po::bool_switch(&quiet), "print nothing but errors")
-      ("config", po::value<std::string>(), "read options from FILE (key = value lines)");
+       "readers) or xdmf2 (HyperSlab DataItems: VisIt, ParaView's legacy XDMF Reader)");
+  cli::add_common(desc, common, cli::kQuiet | cli::kConfig);
   po::positional_options_description positional;
   positional.add("input", 1);
   cli::parse(argc, argv, spec, desc, positional);
@@ -63,21 +64,25 @@ int run(int argc, char** argv) {
   if (output == input) throw UsageError("--output: '" + output + "' is the input file");
 
   const io::Group root = io::open_input(input);
+  ToolRun run = start_run("h5-xdmf", cli::command_line(argc, argv));
+  io::add_input(run, root);
   opt.data_file = io::relative_reference(input, output);
   std::optional<io::Group> fragments_root;
   if (!fragments.empty()) {
     if (fragments == "-") throw UsageError("--fragments: a named file, not standard input");
     fragments_root.emplace(io::open_input(fragments));
+    io::add_input(run, *fragments_root);
     opt.fragments = &*fragments_root;
     opt.fragments_file = io::relative_reference(fragments, output);
-    if (!render::counted_from(*fragments_root, root) && !quiet)
+    if (!render::counted_from(*fragments_root, root) && !common.quiet)
       std::cerr << "h5-xdmf: warning: " << fragments << " was not counted from " << input
                 << " (its provenance does not name that file)\n";
   }
+  opt.provenance = provenance_line(run);
   io::XdmfReport report;
   const std::string text = io::xdmf_document(root, opt, &report);
   io::write_text_file(output, text);
-  if (!quiet) {
+  if (!common.quiet) {
     for (const auto& note : report.notes) std::cerr << "h5-xdmf: note: " << note << "\n";
     std::cerr << "h5-xdmf: wrote " << (output == "-" ? std::string("standard output") : output) << ": "
               << report.bodies << " bodies, " << report.links << " links, "

@@ -7,6 +7,7 @@
 #include "analysis/observable_table.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/provenance.hpp"
 #include "io/header.hpp"
 
 using namespace frac;
@@ -16,13 +17,14 @@ int main(int argc, char** argv) {
   return cli::run_tool("observables", [&] {
     const cli::ToolSpec spec{
         "observables", "RUN.h5 [--columns a,b,...] [--fit Y:X [--where X>0] [--after T]]",
-        "Prints the observables of a run (dem-run, rubber-run) as CSV on standard output: time, then the named "
-        "columns (default: all scalar observables). With --fit Y:X, fits Y = intercept + slope·X by least squares "
-        "over the samples selected by --where and --after and prints `key value` lines: slope, slope_stderr, "
-        "intercept, points (the elastic moduli: --fit stress:axial_strain gives K; --fit "
-        "lateral_strain:axial_strain gives −ν).",
+        "Prints the observables of a run (dem-run, rubber-run) as CSV on standard output: a '#' line with the "
+        "provenance, the header, then time and the named columns (default: all scalar observables). With --fit "
+        "Y:X, fits Y = intercept + slope·X by least squares over the samples selected by --where and --after and "
+        "prints `key value` lines: slope, slope_stderr, intercept, points (the elastic moduli: --fit "
+        "stress:axial_strain gives K; --fit lateral_strain:axial_strain gives −ν).",
         "  observables run.h5 --columns stress,axial_strain > curve.csv\n"
         "  observables run.h5 --fit stress:axial_strain --where 'axial_strain>0' --after 2e-3"};
+    cli::CommonOptions common;
     std::string input, columns, fit, where, parameter, compare;
     double after = -std::numeric_limits<double>::infinity();
     po::options_description desc("Options");
@@ -34,12 +36,15 @@ int main(int argc, char** argv) {
         "parameter", po::value(&parameter), "print the value of a resolved parameter of the run (e.g. derived.dt)")(
         "compare", po::value(&compare),
         "REFERENCE.h5: print the rms and largest distance between the final positions of the two runs (same mesh)");
+    cli::add_common(desc, common, cli::kQuiet | cli::kConfig);
     po::positional_options_description positional;
     positional.add("input", 1);
     cli::parse(argc, argv, spec, desc, positional);
 
     const io::Group root = io::open_input(input);
     io::check_header(root, {"run"});
+    ToolRun run = start_run("observables", cli::command_line(argc, argv));
+    io::add_input(run, root);
     if (!compare.empty()) {
       const io::Group reference = io::open_input(compare);
       io::check_header(reference, {"run"});
@@ -54,7 +59,7 @@ int main(int argc, char** argv) {
     }
     const analysis::ObservableTable table = analysis::read_observables(root, analysis::split_names(columns));
     if (fit.empty()) {
-      analysis::write_csv(table, std::cout);
+      analysis::write_csv(table, std::cout, provenance_line(run));
       return kExitOk;
     }
     const auto colon = fit.find(':');

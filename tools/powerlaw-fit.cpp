@@ -94,7 +94,7 @@ int run(int argc, char** argv) {
       ("threads", po::value(&opt.threads)->default_value(0), "threads for the resampling (0: all cores; results do not depend on it)")
       ("histogram-csv", po::value(&histogram_csv),
        "also write the log-binned density histogram as CSV (center,density,count,lower,upper) to this file");
-  cli::add_common(desc, common, cli::kOutput | cli::kSeed | cli::kQuiet | cli::kConfig);
+  cli::add_common(desc, common, cli::kOutput | cli::kSeed | cli::kQuiet | cli::kConfig, cli::kOutputHdf5OrText);
   po::positional_options_description positional;
   positional.add("input", -1);
   const auto vm = cli::parse(argc, argv, spec, desc, positional);
@@ -153,7 +153,7 @@ int run(int argc, char** argv) {
 
   if (!histogram_csv.empty()) {
     std::ostringstream csv;
-    io::write_histogram_csv(csv, report);
+    io::write_histogram_csv(csv, report, provenance_line(run));
     io::write_text_output(histogram_csv, csv.str());
   }
   if (format == "text") {

@@ -8,6 +8,8 @@
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/provenance.hpp"
+#include "io/header.hpp"
 #include "io/hdf5.hpp"
 #include "render/canvas.hpp"
 #include "render/run_picture.hpp"
@@ -110,7 +112,9 @@ int run(int argc, char** argv) {
       ("axes", po::bool_switch(&axes), "draw axes with ticks in metres")
       ("no-title", po::bool_switch(&no_title), "leave out the title line (file, frame, time)")
       ("format", po::value(&format), "png or svg (default: from the output's extension; png for standard output)");
-  cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kConfig);
+  cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kConfig,
+                  "picture file, .png or .svg (with --all-frames a frame-number pattern); '-' writes the PNG (or "
+                  "--format svg) to standard output");
   po::positional_options_description positional;
   positional.add("input", 1);
   const auto vm = cli::parse(argc, argv, spec, desc, positional);
@@ -150,15 +154,19 @@ int run(int argc, char** argv) {
   }
 
   const io::Group root = io::open_input(input);
+  ToolRun run = start_run("render", cli::command_line(argc, argv));
+  io::add_input(run, root);
   std::optional<io::Group> fragments_root;
   std::optional<render::FragmentLabels> labels;
   if (vm.count("fragments")) {
     fragments_root.emplace(io::open_input(fragments));
+    io::add_input(run, *fragments_root);
     labels = render::read_fragment_labels(*fragments_root);
     if (!render::counted_from(*fragments_root, root) && !common.quiet)
       std::cerr << "render: warning: " << fragments << " was not counted from " << input
                 << " (its provenance does not name that file)\n";
   }
+  const std::string provenance = provenance_line(run);
   render::RunPicture picture(root, labels, opt);
   if (!picture.is_run() && choices > 0)
     throw UsageError(std::string(vm.count("frame") ? "--frame" : vm.count("time") ? "--time" : "--all-frames") +
@@ -175,7 +183,7 @@ int run(int argc, char** argv) {
       say("warning: the fragments were counted at frame " + std::to_string(labels->frame) + ", drawing frame " +
           std::to_string(k));
     const render::Figure fig = picture.figure(k);
-    render::write_figure(fig, size, fmt, common.output);
+    render::write_figure(fig, size, fmt, common.output, provenance);
     const auto px = render::canvas_pixels(fig, size);
     say("wrote " + (common.output == "-" ? std::string("standard output") : common.output) + " (" +
         std::to_string(px[0]) + "x" + std::to_string(px[1]) + (picture.is_run() ? ", frame " + std::to_string(k) : "") + ")");
@@ -186,7 +194,8 @@ int run(int argc, char** argv) {
   for (long long k = 0; k < static_cast<long long>(picture.frames()); k += every) frames.push_back(k);
   picture.fix_across(frames);  // one view and one colour range for the whole sequence
   for (std::size_t s = 0; s < frames.size(); ++s)
-    render::write_figure(picture.figure(frames[s]), size, fmt, numbered(common.output, static_cast<long long>(s)));
+    render::write_figure(picture.figure(frames[s]), size, fmt, numbered(common.output, static_cast<long long>(s)),
+                         provenance);
   say("wrote " + std::to_string(frames.size()) + " pictures, " + numbered(common.output, 0) + " to " +
       numbered(common.output, static_cast<long long>(frames.size()) - 1));
   return kExitOk;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/provenance_text.hpp"
 #include "io/run_io.hpp"
 
 namespace frac::analysis {
@@ -64,8 +65,8 @@ ObservableTable read_observables(const io::Group& root, const std::vector<std::s
   return t;
 }
 
-void write_csv(const ObservableTable& t, std::ostream& out) {
-  out << "time_s";
+void write_csv(const ObservableTable& t, std::ostream& out, const std::string& provenance) {
+  out << io::csv_comment(provenance) << "time_s";
   for (std::size_t c = 0; c < t.names.size(); ++c)
     out << "," << t.names[c] << (t.units[c].empty() || t.units[c] == "1" ? "" : "_" + t.units[c]);
   out << "\n" << std::setprecision(17);  // round trip: an energy drift of 1e-12 of a pre-stretched sheet must survive

@@ -24,7 +24,8 @@ std::vector<std::string> split_names(const std::string& comma_separated);
 // empty = every scalar observable. InputError naming the file and observable when one is missing or
 // sampled at other times.
 ObservableTable read_observables(const io::Group& root, const std::vector<std::string>& names);
-void write_csv(const ObservableTable& table, std::ostream& out);
+// As CSV: the provenance line as a '#' comment, the header (names with their units), the rows.
+void write_csv(const ObservableTable& table, std::ostream& out, const std::string& provenance);
 // Rows with time > after and, if `condition` ("name>value" or "name<value") is given, satisfying it.
 std::vector<std::uint8_t> select_rows(const ObservableTable& table, const std::string& condition, double after,
                                       const std::string& file);

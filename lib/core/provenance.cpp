@@ -5,6 +5,7 @@
 #include <ctime>
 #include <random>
 
+#include "core/version.hpp"
 
 namespace frac {
 
@@ -14,6 +15,25 @@ ToolRun start_run(const std::string& tool, const std::string& command_line) {
   run.command_line = command_line;
   run.started = utc_now_iso8601();
   return run;
+}
+
+std::string provenance_line(const ToolRun& run) {
+  std::string line = "tool=" + run.tool + " version=" + kVersion + " time=" + run.started;
+  if (!run.seed.empty()) line += " seed=" + run.seed;
+  for (std::size_t k = 0; k < run.input_uuids.size(); ++k) line += (k ? "," : " inputs=") + run.input_uuids[k];
+  line += " command=";
+  for (const char c : run.command_line) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\\') line += "\\\\";
+    else if (c == '\n') line += "\\n";
+    else if (c == '\t') line += "\\t";
+    else if (u < 0x20 || u == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      line += hex;
+    } else line += c;
+  }
+  return line;
 }
 
 std::string utc_now_iso8601() {

@@ -29,6 +29,11 @@ struct ToolRun {
 
 ToolRun start_run(const std::string& tool, const std::string& command_line);
 
+// The provenance of an output without a /provenance group (PNG, SVG, CSV, XDMF; docs/SCHEMA.md), one
+// line: "tool=T version=V time=UTC [seed=S] [inputs=UUID,...] command=COMMAND LINE". Control
+// characters and backslashes of the command line are written as C escapes (\n, \\, \x01).
+std::string provenance_line(const ToolRun& run);
+
 std::string utc_now_iso8601();
 // Random (version 4) UUID from the system's entropy; file identities, not simulation randomness.
 std::string make_uuid();

@@ -17,6 +17,7 @@
 #include "core/provenance.hpp"
 #include "core/version.hpp"
 #include "io/header.hpp"
+#include "io/provenance_text.hpp"
 
 namespace frac::io {
 
@@ -428,9 +429,9 @@ void pool_into(FitInput& pooled, const FitInput& one) {
   if (pooled.fragments_min_cells != one.fragments_min_cells) pooled.fragments_min_cells = -1;
 }
 
-void write_histogram_csv(std::ostream& out, const analysis::FitReport& report) {
+void write_histogram_csv(std::ostream& out, const analysis::FitReport& report, const std::string& provenance) {
   const auto& h = report.histogram;
-  out << "center,density,count,lower,upper\n";
+  out << csv_comment(provenance) << "center,density,count,lower,upper\n";
   out.precision(10);
   for (std::size_t k = 0; k < h.size(); ++k)
     if (h.count[k] > 0)

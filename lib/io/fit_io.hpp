@@ -56,7 +56,8 @@ void write_text_output(const std::string& path, const std::string& text);
 // Appends the values of `one` to `pooled` (the sample of several files): sources joined with " + ",
 // counts added; the unit and column must agree (InputError otherwise).
 void pool_into(FitInput& pooled, const FitInput& one);
-// The log-binned density histogram as CSV: center,density,count,lower,upper (header line first).
-void write_histogram_csv(std::ostream& out, const analysis::FitReport& report);
+// The log-binned density histogram as CSV: the provenance line as a '#' comment, the header
+// center,density,count,lower,upper, the bins.
+void write_histogram_csv(std::ostream& out, const analysis::FitReport& report, const std::string& provenance);
 
 }  // namespace frac::io

@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
+#include "io/provenance_text.hpp"
 
 namespace frac::io {
 namespace {
@@ -67,20 +68,6 @@ std::vector<std::string> children(const Group& g) {
   return out;
 }
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string dims_text(const std::vector<hsize_t>& dims) {
   std::string out;
   for (auto d : dims) out += (out.empty() ? "" : " ") + std::to_string(d);
@@ -110,8 +97,8 @@ class Writer {
   // A whole HDF5 dataset.
   void hdf(int indent, const std::string& file, const std::string& path, const Shape& s) {
     line(indent, "<DataItem Dimensions=\"" + dims_text(s.dims) + "\" NumberType=\"" + s.number_type +
-                     "\" Precision=\"" + std::to_string(s.precision) + "\" Format=\"HDF\">" + escape(file) + ":" +
-                     escape(path) + "</DataItem>");
+                     "\" Precision=\"" + std::to_string(s.precision) + "\" Format=\"HDF\">" + xml_escape(file) + ":" +
+                     xml_escape(path) + "</DataItem>");
   }
   // Frame `frame` of a [T, ...] dataset, of shape [...]: the Xdmf 3 selection syntax or an XDMF 2
   // HyperSlab.
@@ -127,8 +114,9 @@ class Writer {
     }
     if (flavour == XdmfFlavour::xdmf3) {
       line(indent, "<DataItem Dimensions=\"" + dims_text(result) + "\" NumberType=\"" + s.number_type +
-                       "\" Precision=\"" + std::to_string(s.precision) + "\" Format=\"HDF\">" + escape(file) + ":" +
-                       escape(path) + "|" + start + ":" + stride + ":" + count + ":" + dims_text(s.dims) + "</DataItem>");
+                       "\" Precision=\"" + std::to_string(s.precision) + "\" Format=\"HDF\">" + xml_escape(file) + ":" +
+                       xml_escape(path) + "|" + start + ":" + stride + ":" + count + ":" + dims_text(s.dims) +
+                       "</DataItem>");
       return;
     }
     line(indent, "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"" + dims_text(result) + "\">");
@@ -185,8 +173,8 @@ std::vector<Field> fields_of(const Group& root, const std::string& group, std::s
 
 void attributes(Writer& w, int indent, const std::vector<Field>& fields, const char* center, std::size_t frame) {
   for (const auto& f : fields) {
-    w.line(indent, "<Attribute Name=\"" + escape(f.name) + "\" AttributeType=\"" + attribute_type(f.shape, f.series) +
-                       "\" Center=\"" + center + "\">");
+    w.line(indent, "<Attribute Name=\"" + xml_escape(f.name) + "\" AttributeType=\"" +
+                       attribute_type(f.shape, f.series) + "\" Center=\"" + center + "\">");
     if (f.series) w.frame_slab(indent + 1, f.file, f.path, f.shape, frame);
     else w.hdf(indent + 1, f.file, f.path, f.shape);
     w.line(indent, "</Attribute>");
@@ -261,7 +249,7 @@ std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport*
   w.line(0, "<?xml version=\"1.0\" encoding=\"utf-8\"?>");
   w.line(0, std::string("<Xdmf Version=\"") + (opt.flavour == XdmfFlavour::xdmf3 ? "3.0" : "2.0") +
                 "\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">");
-  w.line(1, "<Domain Name=\"" + escape(file) + "\">");
+  w.line(1, "<Domain Name=\"" + xml_escape(file) + "\">");
   // Shared by every grid of points (each refers to it by XInclude; it is the first element of the
   // Domain): the Polyvertex topology, whose connectivity 0 .. N-1 no dataset of the file holds. The
   // whole Topology is shared, not its DataItem: Xdmf3 moves an inline array into the first topology
@@ -327,8 +315,11 @@ std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport*
     w.line(3, "</DataItem>");
     w.line(2, "</Geometry>");
   }
-  w.line(2, "<Information Name=\"fracture\" Value=\"XDMF sidecar of " + escape(file) + " (" + kind + ", " +
+  w.line(2, "<Information Name=\"fracture\" Value=\"XDMF sidecar of " + xml_escape(file) + " (" + kind + ", " +
                 (cells ? "polygon cells" : "rubber nodes") + "): docs/xdmf.md\"/>");
+  if (!opt.provenance.empty())
+    w.line(2, "<Information Name=\"" + std::string(kProvenanceKey) + "\" Value=\"" + xml_escape(opt.provenance) +
+                  "\"/>");
   std::vector<Field> statics;
   for (const auto& f : body_fields)
     if (!f.series) statics.push_back(f);

@@ -42,6 +42,8 @@ struct XdmfOptions {
   XdmfPolygons polygons = XdmfPolygons::automatic;
   XdmfFlavour flavour = XdmfFlavour::xdmf3;
   std::size_t inline_vertex_limit = 500000;  // automatic: write the polygons up to this many vertices
+  // The sidecar's own provenance (frac::provenance_line), an Information element named "provenance".
+  std::string provenance;
 };
 
 struct XdmfReport {

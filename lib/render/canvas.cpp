@@ -8,13 +8,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <numbers>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/provenance_text.hpp"
 
 namespace frac::render {
 namespace {
@@ -271,8 +271,9 @@ struct ContextDeleter {
 using Surface = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
 using Context = std::unique_ptr<cairo_t, ContextDeleter>;
 
-cairo_status_t write_stdout(void*, const unsigned char* data, unsigned int length) {
-  return std::fwrite(data, 1, length, stdout) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+cairo_status_t append(void* bytes, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(bytes)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
 }
 
 void check(cairo_status_t status, const std::string& path, const char* what) {
@@ -301,15 +302,13 @@ std::array<int, 2> canvas_pixels(const Figure& f, const CanvasSize& size) {
   return {l.width, l.height};
 }
 
-void write_figure(const Figure& f, const CanvasSize& size, ImageFormat format, const std::string& path) {
+void write_figure(const Figure& f, const CanvasSize& size, ImageFormat format, const std::string& path,
+                  const std::string& provenance) {
   const Layout l = make_layout(f, size);
-  const bool to_stdout = path == "-";
-  if (to_stdout && isatty(STDOUT_FILENO))
+  if (path == "-" && isatty(STDOUT_FILENO))
     throw UsageError("refusing to write a picture to a terminal: give -o FILE or redirect standard output");
-  std::unique_ptr<io::AtomicFile> temp;
-  if (!to_stdout) temp = std::make_unique<io::AtomicFile>(path);
-  const std::string target = to_stdout ? std::string("-") : temp->path();
-
+  // Made in memory: the provenance goes in before the file is written.
+  std::string bytes;
   if (format == ImageFormat::png) {
     Surface surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, l.width, l.height));
     check(cairo_surface_status(surface.get()), path, "create the picture (too large?)");
@@ -319,12 +318,10 @@ void write_figure(const Figure& f, const CanvasSize& size, ImageFormat format, c
       check(cairo_status(cr.get()), path, "draw the picture");
     }
     cairo_surface_flush(surface.get());
-    const cairo_status_t s = to_stdout ? cairo_surface_write_to_png_stream(surface.get(), write_stdout, nullptr)
-                                       : cairo_surface_write_to_png(surface.get(), target.c_str());
-    check(s, path, "write the PNG file");
+    check(cairo_surface_write_to_png_stream(surface.get(), append, &bytes), path, "write the PNG file");
+    if (!provenance.empty()) bytes = io::png_with_text(bytes, io::kProvenanceKey, provenance);
   } else {
-    Surface surface(to_stdout ? cairo_svg_surface_create_for_stream(write_stdout, nullptr, l.width, l.height)
-                              : cairo_svg_surface_create(target.c_str(), l.width, l.height));
+    Surface surface(cairo_svg_surface_create_for_stream(append, &bytes, l.width, l.height));
     check(cairo_surface_status(surface.get()), path, "create the SVG file");
     {
       Context cr(cairo_create(surface.get()));
@@ -333,13 +330,9 @@ void write_figure(const Figure& f, const CanvasSize& size, ImageFormat format, c
     }
     cairo_surface_finish(surface.get());
     check(cairo_surface_status(surface.get()), path, "write the SVG file");
+    if (!provenance.empty()) bytes = io::svg_with_metadata(bytes, provenance);
   }
-  if (to_stdout) {
-    if (std::fflush(stdout) != 0)
-      throw RuntimeError("-: cannot write to standard output (" + std::string(std::strerror(errno)) + ")");
-  } else {
-    temp->commit();
-  }
+  io::write_file_atomically(path, bytes);
 }
 
 }  // namespace frac::render

@@ -1,7 +1,8 @@
 #pragma once
 // Draws a Figure with Cairo and writes it as PNG (cairo image surface) or SVG (cairo SVG surface).
-// A named file is written under a temporary name in the target's folder and renamed into place, so a
-// picture is either whole or absent; "-" writes to standard output. The only file that includes cairo.h.
+// The picture is made in memory and written under a temporary name in the target's folder, then renamed
+// into place, so it is either whole or absent; "-" writes to standard output. The only file that
+// includes cairo.h.
 #include <array>
 #include <string>
 
@@ -24,8 +25,10 @@ struct CanvasSize {
 // Width and height the picture gets.
 std::array<int, 2> canvas_pixels(const Figure& f, const CanvasSize& size);
 
-// Draws `f` and writes it to `path` ("-": standard output, refused when it is a terminal).
+// Draws `f` and writes it to `path` ("-": standard output, refused when it is a terminal), with
+// `provenance` (frac::provenance_line; "" for none) in a PNG text chunk or the SVG's <metadata>.
 // UsageError for a missing folder; RuntimeError when the file cannot be written.
-void write_figure(const Figure& f, const CanvasSize& size, ImageFormat format, const std::string& path);
+void write_figure(const Figure& f, const CanvasSize& size, ImageFormat format, const std::string& path,
+                  const std::string& provenance);
 
 }  // namespace frac::render

@@ -8,14 +8,15 @@ src=$1 build=$2 work=$3 experiment=$4
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-# columns FILE "a,b,c": the header is exactly that; at least one row; no field is nan or inf.
+# columns FILE "a,b,c": the header (after any '#' lines: a tool's provenance) is exactly that; at least
+# one row; no field is nan or inf.
 columns() {
   local file=$work/$experiment/$1
   [[ -s $file ]] || fail "$1: missing or empty"
-  local header; header=$(head -n 1 "$file")
+  local header; header=$(awk '!/^#/ { print; exit }' "$file")
   [[ $header == "$2" ]] || fail "$1: header '$header', expected '$2'"
-  [[ $(wc -l < "$file") -ge 2 ]] || fail "$1: no rows"
-  awk -F, -v f="$1" 'NR > 1 { for (i = 1; i <= NF; i++) if (tolower($i) ~ /^[+-]?(nan|inf)/) { print f ": line " NR " field " i " is " $i; bad = 1 } }
+  [[ $(grep -cv '^#' "$file") -ge 2 ]] || fail "$1: no rows"
+  awk -F, -v f="$1" '/^#/ { next } ++n > 1 { for (i = 1; i <= NF; i++) if (tolower($i) ~ /^[+-]?(nan|inf)/) { print f ": line " NR " field " i " is " $i; bad = 1 } }
     END { exit bad }' "$file" || fail "$1: non-finite values"
 }
 # markdown FILE: exists, has a table, no nan/inf anywhere.
@@ -37,7 +38,8 @@ make -C "$src" -f Makefile.analysis MINI=1 NO_BUILD=1 BUILD="$build" RESULTS="$w
 case $experiment in
   demo)
     markdown summary.md
-    columns histogram.csv "$(head -n 1 "$work/demo/histogram.csv")"  # the fit tool's own columns, checked finite
+    columns histogram.csv "center,density,count,lower,upper"
+    head -n 1 "$work/demo/histogram.csv" | grep -q '^# tool=powerlaw-fit ' || fail "histogram.csv: no provenance line first"
     for p in explosion-1e-4 explosion-1e-3 explosion-4e-3 fragments histogram; do png $p.png; done
     [[ -s $work/demo/explosion.xmf ]] || fail "explosion.xmf: no XDMF sidecar"
     ;;

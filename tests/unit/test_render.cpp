@@ -17,6 +17,7 @@
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
+#include "io/provenance_text.hpp"
 #include "io/run_io.hpp"
 #include "io/xdmf.hpp"
 #include "render/canvas.hpp"
@@ -308,7 +309,7 @@ TEST(RenderCanvas, WritesPngAndSvgAtomically) {
   EXPECT_EQ(px[1] % 2, 0);  // even, for video encoders
 
   const auto png = (dir / "picture.png").string();
-  render::write_figure(f, size, render::format_from_name(png), png);
+  render::write_figure(f, size, render::format_from_name(png), png, "tool=test command=a<b");
   const std::string bytes = read_text(png);
   ASSERT_GT(bytes.size(), 24u);
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
@@ -321,11 +322,14 @@ TEST(RenderCanvas, WritesPngAndSvgAtomically) {
   EXPECT_EQ(bytes.substr(12, 4), "IHDR");
   EXPECT_EQ(be32(16), static_cast<unsigned>(px[0]));
   EXPECT_EQ(be32(20), static_cast<unsigned>(px[1]));
+  EXPECT_EQ(bytes.substr(37, 4), "tEXt");  // the provenance, right after IHDR
+  EXPECT_EQ(bytes.substr(41, be32(33)), std::string("provenance\0tool=test command=a<b", 32));
 
   const auto svg = (dir / "picture.svg").string();
-  render::write_figure(f, {400, 300}, render::format_from_name(svg), svg);
+  render::write_figure(f, {400, 300}, render::format_from_name(svg), svg, "tool=test command=a<b");
   const std::string text = read_text(svg);
   EXPECT_EQ(text.rfind("<?xml", 0), 0u);
+  EXPECT_NE(text.find("<metadata id=\"provenance\">tool=test command=a&lt;b</metadata>"), std::string::npos);
   EXPECT_NE(text.find("<svg"), std::string::npos);
   EXPECT_NE(text.find("width=\"400"), std::string::npos);
   EXPECT_GE(count_of(text, "<path"), 4u);  // at least the four cells
@@ -334,11 +338,44 @@ TEST(RenderCanvas, WritesPngAndSvgAtomically) {
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
   EXPECT_EQ(files, 3u);
-  EXPECT_THROW(render::write_figure(f, size, render::ImageFormat::png, (dir / "missing" / "x.png").string()), UsageError);
+  EXPECT_THROW(render::write_figure(f, size, render::ImageFormat::png, (dir / "missing" / "x.png").string(), ""),
+               UsageError);
   EXPECT_THROW(render::format_from_name("picture.jpg"), UsageError);
   EXPECT_THROW(render::format_from_text("gif"), UsageError);
   EXPECT_EQ(render::format_from_name("A.SVG"), render::ImageFormat::svg);
   fs::remove_all(dir);
+}
+
+TEST(Provenance, LineAndItsPlaceInPngSvgCsv) {
+  ToolRun run = start_run("render", "render 'a b.h5'\n-o x.png");
+  run.input_uuids = {"u1", "u2"};
+  const std::string line = provenance_line(run);
+  EXPECT_EQ(line.rfind("tool=render version=", 0), 0u);
+  EXPECT_NE(line.find(" time=" + run.started + " inputs=u1,u2 command=render 'a b.h5'\\n-o x.png"), std::string::npos);
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  EXPECT_EQ(line.find("seed="), std::string::npos);
+  run.seed = "7";
+  EXPECT_NE(provenance_line(run).find(" seed=7 inputs="), std::string::npos);
+
+  // A PNG of IHDR and IEND only: the text chunk goes between them, with its length and the CRC-32 of its
+  // type and data (as Python's zlib.crc32 gives it).
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  const std::string ihdr = std::string("\0\0\0\x0dIHDR", 8) + std::string(13, '\1') + "CRC!";
+  const std::string iend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+  const std::string png = io::png_with_text(signature + ihdr + iend, "k", "ab");
+  EXPECT_EQ(png.substr(0, 33), signature + ihdr);
+  EXPECT_EQ(png.substr(33, 16), std::string("\0\0\0\x04tEXtk\0ab\x84\xf9\xfc\xd8", 16));
+  EXPECT_EQ(png.substr(49), iend);
+  // Not ASCII: iTXt (UTF-8), no compression, no language.
+  const std::string utf8 = io::png_with_text(signature + ihdr + iend, "k", "\xc3\xa9");
+  EXPECT_EQ(utf8.substr(37, 4), "iTXt");
+  EXPECT_EQ(utf8.substr(41, 8), std::string("k\0\0\0\0\0\xc3\xa9", 8));
+  EXPECT_THROW(io::png_with_text("GIF89a", "k", "x"), RuntimeError);
+
+  EXPECT_EQ(io::svg_with_metadata("<?xml version=\"1.0\"?>\n<svg width=\"4\">\n<g/>\n</svg>\n", "a&\"b\""),
+            "<?xml version=\"1.0\"?>\n<svg width=\"4\">\n<metadata id=\"provenance\">a&amp;&quot;b&quot;</metadata>\n<g/>\n</svg>\n");
+  EXPECT_THROW(io::svg_with_metadata("<html/>", "x"), RuntimeError);
+  EXPECT_EQ(io::csv_comment("tool=x"), "# tool=x\n");
 }
 
 TEST(Xdmf, RunSidecarReferencesTheDatasets) {
