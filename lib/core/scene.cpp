@@ -56,7 +56,15 @@ Scene Scene::load(const std::string& path, const std::vector<std::pair<std::stri
   return scene;
 }
 
-void Scene::set(const std::string& key, const std::string& value) { values_[key] = value; }
+void Scene::set(const std::string& key, const std::string& value) {
+  values_[key] = value;
+  overridden_.insert(key);
+}
+
+std::string Scene::origin(std::string_view key) const {
+  if (overridden_.count(key)) return "--" + std::string(key);
+  return name_ + ": " + std::string(key);
+}
 
 bool Scene::has(std::string_view key) const { return values_.find(key) != values_.end(); }
 
@@ -66,7 +74,7 @@ const std::string* Scene::find(std::string_view key) {
 }
 
 void Scene::bad(std::string_view key, const std::string& value, const std::string& why) const {
-  throw UsageError(name_ + ": " + std::string(key) + " = '" + value + "': " + why);
+  throw UsageError(origin(key) + " = '" + value + "': " + why);
 }
 
 double Scene::number(std::string_view key, double fallback) {
@@ -151,10 +159,14 @@ std::vector<std::pair<std::string, std::string>> Scene::resolved() const {
 }
 
 void Scene::check_all_used() const {
-  std::string unused;
-  for (const auto& [k, v] : values_)
-    if (!resolved_.count(k)) unused += (unused.empty() ? "" : ", ") + k;
-  if (!unused.empty()) throw UsageError(name_ + ": unknown key(s): " + unused);
+  std::string in_file, in_options;
+  for (const auto& [k, v] : values_) {
+    if (resolved_.count(k)) continue;
+    std::string& list = overridden_.count(k) ? in_options : in_file;
+    list += (list.empty() ? "" : ", ") + k;
+  }
+  if (!in_file.empty()) throw UsageError(name_ + ": unknown key(s): " + in_file);
+  if (!in_options.empty()) throw UsageError("scene options (command line or --config): unknown key(s): " + in_options);
 }
 
 }  // namespace frac

@@ -5,6 +5,7 @@
 // resolved (defaults included) for the run's /parameters; keys the model never read are refused at
 // the end (a typo in a scene never passes silently). Keys are "section.key".
 #include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -20,7 +21,7 @@ class Scene {
   // The file, then the command-line overrides ({"section.key", "value"}, from cli::split_overrides).
   static Scene load(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides);
   static Scene parse(const std::string& text, const std::string& name);
-  // Command-line overrides win over the file.
+  // Command-line overrides win over the file. Messages about an overridden key name the option, not the file.
   void set(const std::string& key, const std::string& value);
 
   bool has(std::string_view key) const;
@@ -47,10 +48,13 @@ class Scene {
  private:
   const std::string* find(std::string_view key);
   [[noreturn]] void bad(std::string_view key, const std::string& value, const std::string& why) const;
+  // A key as a message names it: "SCENE.ini: key" from the file, "--key" from an override.
+  std::string origin(std::string_view key) const;
   std::string name_ = "scene";
   std::string source_;
   std::map<std::string, std::string, std::less<>> values_;
   std::map<std::string, std::string, std::less<>> resolved_;
+  std::set<std::string, std::less<>> overridden_;
 };
 
 }  // namespace frac
