@@ -327,6 +327,19 @@ TEST(RubberFailure, BitIdenticalForAnyNumberOfThreads) {
   }
 }
 
+// With a cut-off function, a bond fails at u_c where h(u_c) < 1 (1/2 for Fermi): the share released on the
+// way is not frozen, and rubber-run says so with the number; without one (cutoff = none) it does not.
+TEST(RubberFailure, WarnsWhenTheCutoffReleasesPartOfTheShare) {
+  auto warns = [](const std::string& cutoff) {
+    const Strip s = make_strip(20, 8, "[law]\nfailure = freeze\ncutoff = " + cutoff + "\n");
+    for (const auto& w : s.setup.warnings)
+      if (w.find("law.failure = freeze") != std::string::npos) return w;
+    return std::string();
+  };
+  EXPECT_NE(warns("fermi").find("h = 0.5, so 50%"), std::string::npos) << warns("fermi");
+  EXPECT_EQ(warns("none"), "");
+}
+
 // ------------------------------------------------------------------------------------------ crack path
 // crack.path_cutoff_ratio: the bonds crossing the crack line keep u_c, every other bond gets ratio × u_c;
 // ratio 1 (the default) sets nothing (the same bits as a scene without the key); below 1 it is refused.
