@@ -3,7 +3,8 @@
 # (REPEATS=3, NODES=400x80, STEPS=400)
 # The same scene, data/scenes/stretch.ini (λ = (1.2, 3), seed crack, clamps) on a NODES lattice, with each
 # switch of its [physics] on and off: damping (Kelvin, uniform and near_failure at the scene's β),
-# irreversible breaking, toughening (every 10 steps), all three at once, and damping on with β = 0.
+# irreversible breaking, toughening (every 10 steps), all three at once, damping on with β = 0, energy-neutral
+# failure (law.failure = freeze) and a crack path (crack.path_cutoff_ratio).
 # One thread. Nanoseconds per node-step from the CPU time (user + system) of STEPS and 2×STEPS steps run
 # back to back, differenced so that set-up and output do not count (observations off); the median over
 # the repeats, the configurations interleaved in every repeat. Wall-clock figures beside them for
@@ -23,7 +24,7 @@ mesh="$out/terms-rubber-mesh.h5"
 "$bin/mesh-gen" triangular --nodes "$nodes_xy" --spacing 1e-3 -q -o "$mesh"
 nodes=$(awk -v s="$nodes_xy" 'BEGIN { split(s, a, "x"); print a[1] * a[2] }')
 
-names=(all-off damping-uniform damping-near-failure damping-zero irreversible toughening all-on)
+names=(all-off damping-uniform damping-near-failure damping-zero irreversible toughening all-on freeze crack-path)
 declare -A keys=(
   [all-off]=""
   [damping-uniform]="--physics.damping on --damping.kind uniform"
@@ -32,6 +33,8 @@ declare -A keys=(
   [irreversible]="--physics.irreversible on"
   [toughening]="--physics.toughening on"
   [all-on]="--physics.damping on --physics.irreversible on --physics.toughening on"
+  [freeze]="--law.failure freeze"
+  [crack-path]="--crack.path_cutoff_ratio 1.2"
 )
 command_for() {  # the rubber-run command line of configuration $1
   echo "$bin/rubber-run --scene data/scenes/stretch.ini $mesh --threads 1 -q -o $out/terms-rubber-run.h5" \
@@ -57,3 +60,5 @@ cost_row "damping on, β = 0" damping-zero all-off all-off
 cost_row "irreversible breaking" irreversible all-off all-off
 cost_row "toughening" toughening all-off all-off
 cost_row "all three" all-on all-off all-off
+cost_row "energy-neutral failure" freeze all-off all-off
+cost_row "crack path" crack-path all-off all-off

@@ -1,6 +1,7 @@
 #include "rubber/crack.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 
 namespace frac::rubber {
@@ -36,6 +37,19 @@ std::size_t CrackPath::seed(Model& model, double length) const {
       ++cut;
     }
   return cut;
+}
+
+std::size_t CrackPath::set_bulk_cutoff(Model& model, double cutoff) const {
+  const Lattice& L = model.lattice();
+  std::vector<std::uint8_t> on_path(L.bonds(), 0);
+  for (std::size_t b : bond_) on_path[b] = 1;
+  std::size_t set = 0;
+  for (std::size_t b = 0; b < L.bonds(); ++b)
+    if (L.exists[b] && !on_path[b]) {
+      model.set_cutoff(b, cutoff);
+      ++set;
+    }
+  return set;
 }
 
 CrackPath::Tip CrackPath::tip(const Model& model, std::span<const double> q) const {

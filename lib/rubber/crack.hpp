@@ -21,6 +21,10 @@ class CrackPath {
   // Removes (cuts on purpose) the crossing bonds with crossing x − x_min < length; returns how many.
   std::size_t seed(Model& model, double length) const;
 
+  // Gives every existing bond that does not cross the path the cut-off `cutoff` (a tougher bulk: the
+  // path is a weak plane); returns how many.
+  std::size_t set_bulk_cutoff(Model& model, double cutoff) const;
+
   struct Tip {
     bool found = false;
     std::size_t bond = 0;      // forward bond id of the tip bond

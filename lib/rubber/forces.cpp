@@ -173,6 +173,80 @@ inline double centre(const G& g, const Slots& s, double* D, const double* res) {
   else return centre_pairs<Energy, Wt>(g, s, D, res);
 }
 
+// Energy-neutral failure at node i: a slot whose bond failed in this evaluation (kFreezing) leaves the
+// node's three-body sum (h = 0: out of the moments, no force), and the terms that contain it are added to
+// the node's frozen energy at their value when the bond crossed u_c. The step moved every node along a
+// straight line from its previous position; the crossing is where the bond's length along that line is
+// u_c, and there the shell is interpolated (h re-evaluated; the failing bond exactly at u_c, as f is
+// frozen at f(u_c)). Freezing the terms at the current configuration instead would book the motion past
+// the crossing as energy no force did: an error of O(dt) per failure, of one sign. Without a previous
+// configuration (the first evaluation) the current one is used. Only node i's own pass writes frozen[i].
+template <class Wt, class H, class G>
+inline void freeze_failing(ForceContext& c, const H& cut, const G& g, std::size_t i, Slots& s) {
+  std::size_t bond[6];
+  bool failing = false;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto j = static_cast<std::size_t>(c.nbr[6 * i + k]);
+    bond[k] = k < 3 ? 3 * i + k : 3 * j + k - 3;
+    failing = failing || c.status[bond[k]] == kFreezing;
+  }
+  if (!failing) return;
+  // The change of each slot's vector over the step (zero for missing neighbours, whose h is 0).
+  double dx[6] = {}, dy[6] = {};
+  if (c.x_prev) {
+    const double mx = c.x[i] - c.x_prev[i], my = c.y[i] - c.y_prev[i];
+    for (std::size_t k = 0; k < 6; ++k) {
+      const auto j = static_cast<std::size_t>(c.nbr[6 * i + k]);
+      if (j >= c.n) continue;
+      dx[k] = c.x[j] - c.x_prev[j] - mx;
+      dy[k] = c.y[j] - c.y_prev[j] - my;
+    }
+  }
+  // For each failing slot, how far back along the step it crossed u_c: back = 1 − θ, θ in [0, 1] with
+  // |a − back d| = u_c, the root nearest the current configuration of
+  // |d|² back² − 2 (a·d) back + |a|² − u_c² = 0.
+  std::size_t order[6];
+  double back_of[6];
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < 6; ++k) {
+    if (c.status[bond[k]] != kFreezing) continue;
+    const double uc = c.cutoff[bond[k]];
+    const double dd = dx[k] * dx[k] + dy[k] * dy[k], ad = s.ax[k] * dx[k] + s.ay[k] * dy[k];
+    const double excess = s.ax[k] * s.ax[k] + s.ay[k] * s.ay[k] - uc * uc;  // > 0: past u_c now
+    double back = 0;
+    if (dd > 0 && ad > 0) back = std::min(1.0, excess / (ad + std::sqrt(std::max(0.0, ad * ad - dd * excess))));
+    back_of[k] = back;
+    order[count++] = k;
+  }
+  // The first to cross first: the terms it shares with a later one are frozen while that one still holds.
+  std::stable_sort(order, order + count, [&](std::size_t a, std::size_t b) { return back_of[a] > back_of[b]; });
+  bool gone[6];  // out of the sum: failed before (h = 0 in s already) or frozen just now
+  for (std::size_t m = 0; m < 6; ++m) gone[m] = c.status[bond[m]] != kIntact && c.status[bond[m]] != kFreezing;
+  for (std::size_t r = 0; r < count; ++r) {
+    const std::size_t k = order[r];
+    const double uc = c.cutoff[bond[k]], back = back_of[k];
+    Slots t = s;
+    for (std::size_t m = 0; m < 6; ++m) {
+      if (gone[m]) continue;
+      t.ax[m] -= back * dx[m];
+      t.ay[m] -= back * dy[m];
+      const double um = std::sqrt(t.ax[m] * t.ax[m] + t.ay[m] * t.ay[m]);
+      if (m == k) {
+        t.ax[m] *= uc / um;
+        t.ay[m] *= uc / um;
+        t.h[m] = cut(uc, uc).v;
+      } else {
+        t.h[m] = cut(um, c.cutoff[bond[m]]).v;
+      }
+    }
+    const double with = centre<true, Wt>(g, t, nullptr, c.residual);
+    t.h[k] = 0;
+    c.frozen[i] += with - centre<true, Wt>(g, t, nullptr, c.residual);
+    s.h[k] = s.hpu[k] = s.fpu[k] = 0;
+    gone[k] = true;
+  }
+}
+
 template <class P, class H, class G, DampingKind K, class Wt>
 struct Passes {
   static void bonds(ForceContext& c, std::size_t i0, std::size_t i1, int worker) {
@@ -188,6 +262,7 @@ struct Passes {
         const std::size_t b = 3 * i + s;
         BondData& d = c.bond[b];
         if (c.status[b] != kIntact) {
+          if (c.status[b] == kFreezing) c.status[b] = kBroken;  // its terms were frozen in the last evaluation
           d = BondData{0, 0, 0, 0, 0, 0};
           continue;
         }
@@ -207,9 +282,15 @@ struct Passes {
               ++events;
             }
             if (u > uc + c.break_extra) {
-              c.status[b] = kBroken;
               ++breaks;
-              d = BondData{0, 0, 0, 0, 0, 0};
+              if (c.freeze) {
+                // Its vector for the centres of its ends, which freeze its terms; it exerts nothing.
+                c.status[b] = kFreezing;
+                d = BondData{bx, by, 0, 0, 0, 0};
+              } else {
+                c.status[b] = kBroken;
+                d = BondData{0, 0, 0, 0, 0, 0};
+              }
               continue;
             }
           }
@@ -235,9 +316,13 @@ struct Passes {
 
   static void centres(ForceContext& c, std::size_t i0, std::size_t i1) {
     const G& g = *static_cast<const G*>(c.angle);
+    const H& cut = *static_cast<const H*>(c.cutoff_law);
+    const bool freeze = c.freeze;
     Slots s;
     for (std::size_t i = i0; i < i1; ++i) {
       load_slots(c, i, s);
+      if (freeze) [[unlikely]]
+        freeze_failing<Wt>(c, cut, g, i, s);
       centre<false, Wt>(g, s, c.D + 12 * i, c.residual);
     }
   }

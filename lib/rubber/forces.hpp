@@ -12,6 +12,8 @@
 //                 T = c2(‖M‖² − Σh²|a|⁴) + c1(|S|² − Σh²|a|²) + c0((Σh)² − Σh²).
 //               With the three-body weight all_bonds (bond_law.hpp) the node's three-body part is
 //               W T, W = Π_s h_s, and D carries T ∂W/∂a_s as well (a separate instantiation).
+//               With energy-neutral failure, a node whose bond failed in this evaluation first freezes
+//               the terms that contain it (forces.cpp, freeze_failing).
 //   3. gather:  F_i = Σ_s D(i,s) − Σ_s D(nbr(i,s), s+3 mod 6)   (translation invariance of E_i),
 //               plus Kelvin damping along bonds; a_i = F_i / m.
 //
@@ -40,6 +42,9 @@ enum class DampingKind { none, uniform, near_failure };
 inline constexpr std::uint8_t kIntact = 0;
 inline constexpr std::uint8_t kRemoved = 1;  // missing, or cut on purpose (seed crack): no energy, no force
 inline constexpr std::uint8_t kBroken = 2;   // failed irreversibly: keeps the constant 2 f(u_c), no force
+// Failed in this evaluation under energy-neutral failure (ForceContext::freeze): the centres of its two
+// ends freeze its three-body terms; the next bonds pass makes it kBroken.
+inline constexpr std::uint8_t kFreezing = 3;
 
 // Everything the passes read and write. Owned by the model; the pointers stay valid for its life.
 struct ForceContext {
@@ -61,6 +66,11 @@ struct ForceContext {
   // Dynamics: events and irreversible breaking happen only when `track` is set.
   bool track = false;
   double break_extra = 0;   // irreversible breaking when u > u_c + break_extra; +inf: never (reversible law)
+  // Energy-neutral failure: a bond breaks when it first passes u_c (break_extra is not used), and the
+  // three-body terms that contain it are frozen into the constant energy of their node, frozen[i].
+  bool freeze = false;
+  double* frozen = nullptr;  // [n] J, with freeze
+  const double *x_prev = nullptr, *y_prev = nullptr;  // with freeze: positions at the previous step, or nullptr
   double beta = 0;          // Kelvin coefficient β (kg/s)
   double damping_onset = 0; // near_failure: damping ramps from 0 at this length (m) to β at u_c
 

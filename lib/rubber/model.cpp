@@ -47,7 +47,10 @@ Model::Model(Lattice lattice, ModelOptions options)
   if (!options_.residual.empty() && options_.residual.size() != 36)
     throw UsageError("three-body residual: 36 values (6 x 6 slots) expected");
   ctx_.residual = options_.residual.empty() ? nullptr : options_.residual.data();
-  ctx_.break_extra = options_.break_extra;
+  ctx_.freeze = options_.failure == Failure::freeze;
+  ctx_.break_extra = ctx_.freeze ? 0.0 : options_.break_extra;
+  if (ctx_.freeze) frozen_.assign(n, 0.0);
+  ctx_.frozen = frozen_.data();
   ctx_.beta = options_.beta;
   ctx_.damping_onset = options_.damping_onset;
   ctx_.inv_mass = 1 / options_.node_mass;
@@ -246,6 +249,11 @@ void Model::run(ThreadPool::Job job) { pool_->run(job, this); }
 void Model::accelerations(double, std::span<const double> q, std::span<const double> v, std::span<double> a) {
   bind(q, v, a, true);
   evaluate();
+  if (ctx_.freeze) {  // where the next step starts from: failures in it are frozen where they happened
+    q_prev_.assign(q.begin(), q.end());
+    ctx_.x_prev = q_prev_.data();
+    ctx_.y_prev = q_prev_.data() + lattice_.n;
+  }
 }
 
 void Model::forces(std::span<const double> q, std::span<double> f) {
@@ -267,6 +275,7 @@ Model::Energy Model::potential_energy(std::span<const double> q) {
     e.pair += blocks_[2 * k];
     e.three_body += blocks_[2 * k + 1];
   }
+  for (double c : frozen_) e.frozen += c;
   return e;
 }
 

@@ -8,6 +8,13 @@
 // length exceeds u_c + break_extra (where h is already ≈ 0) is removed for good and keeps its constant
 // pair energy 2 f(u_c); the three-body energy it still had, h·g ≈ e^{−break_extra/w}·g, is lost.
 // Bonds removed on purpose (the seed crack) carry no energy and no force.
+//
+// Energy-neutral failure (Failure::freeze, not in the paper): a bond breaks irreversibly when it first
+// passes u_c, and every three-body term that contains it, h_s h_t g(a_s·a_t) at either end, is frozen into
+// a constant energy of its node at its value when the bond crossed u_c, as f is frozen at f(u_c). The
+// bond carries no force from the evaluation in which it is found past u_c on. The crossing lies between
+// the last step's configuration and this one (on the straight line each node moved along); freezing
+// there keeps the energy error of a failure O(dt) and of either sign, so that it does not accumulate.
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -25,8 +32,13 @@
 
 namespace frac::rubber {
 
+// What a failing bond takes with it: the paper's law (its three-body terms fade through h, or go with it
+// when it is removed) or the energy-neutral law (frozen at failure; breaking at u_c, break_extra unused).
+enum class Failure { paper, freeze };
+
 struct ModelOptions {
   BondLaw law;
+  Failure failure = Failure::paper;
   double node_mass = 1;                     // kg
   DampingKind damping = DampingKind::none;  // Kelvin damping along bonds
   double beta = 0;                          // kg/s: F_i += β ((v_j − v_i)·û) û
@@ -84,9 +96,10 @@ class Model final : public dynamics::System {
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
 
   // Evaluations at a configuration (no events, no breaking, no damping).
+  // frozen: the constants of the three-body terms frozen by energy-neutral failure.
   struct Energy {
-    double pair = 0, three_body = 0;
-    double total() const { return pair + three_body; }
+    double pair = 0, three_body = 0, frozen = 0;
+    double total() const { return pair + three_body + frozen; }
   };
   Energy potential_energy(std::span<const double> q);
   void forces(std::span<const double> q, std::span<double> f);  // −∇U
@@ -134,6 +147,8 @@ class Model final : public dynamics::System {
   std::vector<double> clamp_v_;  // their velocities until clamp_until_ (zero for fixed clamps)
   double clamp_until_ = 0;
   std::vector<std::uint8_t> face_;  // per node, for toughen()
+  std::vector<double> frozen_;      // per node, J: its frozen three-body terms (Failure::freeze)
+  std::vector<double> q_prev_;      // with Failure::freeze: q at the last accelerations(), or empty
   bool fused_ = false;
   std::size_t rows_ = 0, row_len_ = 0;
 };

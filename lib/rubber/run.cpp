@@ -23,6 +23,7 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   mo.damping = sc.damping ? sc.damping_kind : DampingKind::none;
   mo.beta = sc.beta;
   mo.damping_onset = sc.damping_onset;
+  mo.failure = sc.failure == "freeze" ? Failure::freeze : Failure::paper;
   mo.break_extra = sc.irreversible ? sc.break_widths * sc.cutoff_width : std::numeric_limits<double>::infinity();
   mo.threads = threads;
   Lattice lattice = build_lattice(mesh, sc.periodic_x, sc.periodic_y);
@@ -48,8 +49,9 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
     sys.v0[n + i] = rate_y * L.ry[i];
   }
 
-  // The seed crack, along the mesh's crack line from the left edge.
+  // The seed crack, along the mesh's crack line from the left edge; the bulk off the line tougher.
   if (sc.seed_length > 0) sys.seeded = sys.path->seed(model, sc.seed_length);
+  if (sc.path_cutoff_ratio != 1) sys.path->set_bulk_cutoff(model, sc.path_cutoff_ratio * sc.cutoff_length);
   if (sc.drive_speed > 0)
     sys.drive = std::make_unique<CrackDrive>(*sys.path, sc.seed_length, sc.drive_speed, sc.drive_length, su.F(0, 0));
 
@@ -180,7 +182,9 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
   SpeedFit fit(window);
   const std::string k_kinetic = "kinetic_energy", k_potential = "potential_energy", k_total = "total_energy",
                     k_events = "bonds_past_cutoff", k_tip = "crack_tip_x", k_tip_ref = "crack_tip_reference_x",
-                    k_speed = "crack_tip_speed", k_tough = "toughened_bonds", k_drive = "drive_energy";
+                    k_speed = "crack_tip_speed", k_tough = "toughened_bonds", k_drive = "drive_energy",
+                    k_frozen = "frozen_energy";
+  const bool freeze = model.options().failure == Failure::freeze;
 
   auto write_frame = [&](std::int64_t step) {
     if (!writer) return;
@@ -209,7 +213,8 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
     last_observed = step;
     const auto q = integ->q();
     const double ke = model.kinetic_energy(integ->v());
-    const double pe = model.potential_energy(q).total();
+    const Model::Energy energy = model.potential_energy(q);
+    const double pe = energy.total();
     tip = path.tip(model, q);
     // The speed is fitted to λx × reference x of the tip: the lab position of the crack in the far
     // field (the tip's own nodes may fly off as debris).
@@ -228,6 +233,7 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
     writer->observe(k_speed, step, t, sum.tip_speed, "m s-1");
     if (sc.toughening) writer->observe(k_tough, step, t, static_cast<double>(sum.toughened), "1");
     if (sys.drive) writer->observe(k_drive, step, t, sum.drive_energy, "J");
+    if (freeze) writer->observe(k_frozen, step, t, energy.frozen, "J");
   };
 
   auto collect_events = [&](std::int64_t step) {

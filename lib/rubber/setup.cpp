@@ -45,6 +45,7 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   if (!(r.three_body_residual < 1))
     throw UsageError(s.name() + ": law.three_body_residual must lie in [0, 1) (the fraction of the far-field three-body "
                      "energy a failed pair keeps)");
+  r.failure = s.choice("law.failure", r.failure, {"paper", "freeze"});
   r.short_width = s.positive("law.short_width", 0.1 * d);
   r.cutoff_length = s.positive("law.cutoff_length", 3.5 * d);
   r.cutoff_width = s.positive("law.cutoff_width", 0.05 * d);
@@ -99,6 +100,10 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
 
   r.seed_length = s.non_negative("crack.seed_length", 0.0);
   r.tip_kick = s.non_negative("crack.tip_kick", 0.0);
+  r.path_cutoff_ratio = s.positive("crack.path_cutoff_ratio", r.path_cutoff_ratio);
+  if (r.path_cutoff_ratio < 1)
+    throw UsageError(s.name() + ": crack.path_cutoff_ratio = " + num(r.path_cutoff_ratio) +
+                     " must be at least 1 (the bulk's cut-off over the crack path's: the path is the weak plane)");
   r.drive_speed = s.non_negative("crack.drive_speed", 0.0);
   r.drive_length = s.non_negative("crack.drive_length", 0.0);
   if ((r.drive_speed > 0) != (r.drive_length > 0))
@@ -216,14 +221,16 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
   if (sc.cutoff != "none") {
     // Scan the cut-off region: the curvature of h peaks at u_c − 1.32 w for the Fermi function, at
     // u_c − 0.21 L and u_c − 0.79 L for the smoothstep.
-    // With toughening, bonds also pass through the raised cut-off, where g is larger still.
+    // With toughening or a crack path, bonds also pass through the raised cut-off, where g is larger still.
     const double u0 = std::max({su.family_length[0], su.family_length[1], su.family_length[2]});
     std::vector<std::pair<double, BondLaw>> cutoffs = {{sc.cutoff_length, su.law}};
-    if (sc.toughening) {
+    std::vector<double> raised;
+    if (sc.toughening) raised.push_back(sc.toughening_cutoff);
+    if (sc.path_cutoff_ratio != 1) raised.push_back(sc.path_cutoff_ratio * sc.cutoff_length);
+    for (double uc : raised) {
       LawParams tp = p;
-      tp.cutoff = sc.toughening_cutoff;
-      cutoffs.emplace_back(sc.toughening_cutoff,
-                           make_bond_law(tp, sc.pair, sc.cutoff, sc.angle, sc.three_body_weight));
+      tp.cutoff = uc;
+      cutoffs.emplace_back(uc, make_bond_law(tp, sc.pair, sc.cutoff, sc.angle, sc.three_body_weight));
     }
     for (const auto& [uc, law] : cutoffs)
       for (double k : {0.21, 0.5, 0.79, 1.0, 1.32}) {
@@ -250,7 +257,7 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
   // An irreversibly broken bond leaves with its three-body terms, weighted by h where it is cut: cut
   // mid-cut-off, it takes that share of them at once and the energy jumps (2-4 % in the crack runs with
   // b = 0.02-0.25, a Fermi cut-off and 0.2 widths; docs/rubber-run.md).
-  if (sc.irreversible && sc.b != 0 && sc.cutoff != "none") {
+  if (sc.irreversible && sc.failure == "paper" && sc.b != 0 && sc.cutoff != "none") {
     const double cut = sc.cutoff_length + sc.break_widths * sc.cutoff_width;
     const double h = std::visit([&](const auto& hc) { return hc(cut, sc.cutoff_length).v; }, su.law.cutoff);
     if (h > kBreakingWeightLimit)
@@ -260,6 +267,15 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
                             " (material.b = " + num(sc.b) +
                             "): the energy of its three-body terms goes at once and the total energy jumps; "
                             "raise breaking.extra_widths until h there is below " + num(kBreakingWeightLimit));
+  }
+  // Energy-neutral failure freezes the terms at u_c with the weight h(u_c) they still have; the share the
+  // cut-off released on the way is a cohesive barrier all the same.
+  if (sc.failure == "freeze" && sc.cutoff != "none" && sc.b != 0) {
+    const double h = std::visit([&](const auto& hc) { return hc(sc.cutoff_length, sc.cutoff_length).v; }, su.law.cutoff);
+    su.warnings.push_back("law.failure = freeze with the " + sc.cutoff + " cut-off: a bond fails at u_c, where h = " +
+                          num(h, 3) + ", so " + num(100 * (1 - h), 3) +
+                          "% of its three-body share is released through h before it fails (a cohesive barrier), "
+                          "not frozen; law.cutoff = none freezes all of it");
   }
   if (sc.b >= 2) su.warnings.push_back("material.b = " + num(sc.b) + ": Mooney-Rivlin has no real shear waves for b >= 2");
   if (sc.dt > su.dt_bound)

@@ -29,6 +29,7 @@ struct RubberScene {
   std::string pair = "marder", cutoff = "fermi", angle = "marder";
   std::string three_body_weight = "pair";  // pair | all_bonds (bond_law.hpp)
   double three_body_residual = 0;  // κ in [0, 1): 0, the paper's law (three_body_residual.hpp)
+  std::string failure = "paper";   // paper | freeze: energy-neutral failure (model.hpp)
   double short_width = 0, cutoff_length = 0, cutoff_width = 0;  // m
   // [physics] and their parameters
   bool damping = false;
@@ -49,6 +50,7 @@ struct RubberScene {
   bool periodic_x = false, periodic_y = false;
   // [crack]
   double seed_length = 0, tip_kick = 0;  // m, m/s
+  double path_cutoff_ratio = 1;  // the bulk's cut-off over the crack path's (law.cutoff_length): a weak plane
   double drive_speed = 0, drive_length = 0;  // m/s (lab), m (reference): the driven seed (crack_drive.hpp); 0: off
   // [pulse]
   std::string pulse_kind = "longitudinal", pulse_direction = "x";
