@@ -447,6 +447,7 @@ void write_fit_text(std::ostream& out, const FitReport& r, const FitInput& input
   kd("logbin_alpha", -l.slope);
   kd("logbin_alpha_stderr", l.slope_stderr);
   kd("logbin_slope", l.slope);
+  kd("logbin_intercept", l.intercept);
   kd("logbin_chi2_per_dof", l.chi2_per_dof);
   ki("logbin_bins", l.n_bins);
   kd("logbin_fit_min", l.fit_min);
