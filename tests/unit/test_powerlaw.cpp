@@ -860,7 +860,7 @@ TEST(PowerlawFit, IntegerDataMakeTheDiscreteFitPrimaryAndBothAreReported) {
 TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   const fs::path dir = fs::temp_directory_path() / ("fracture-test-powerlaw-" + make_uuid().substr(0, 8));
   fs::create_directories(dir);
-  // A fragments file as fragment-count writes it: mass [F] kg, cell_count [F], min_cells attribute.
+  // A fragments file as fragment-count writes it: mass [F] kg, cell_count [F], min_cells and total_mass attributes.
   Rng rng(91);
   const DiscreteSampler ds(1, 2.0);
   std::vector<std::int64_t> cells(400);
@@ -877,6 +877,7 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
     g.write("mass", std::span<const double>(mass), {mass.size()}, "kg");
     g.write("cell_count", std::span<const std::int64_t>(cells), {cells.size()}, "1");
     g.set_attr("min_cells", std::int64_t{2});
+    g.set_attr("total_mass", std::accumulate(mass.begin(), mass.end(), 0.0));
     out.commit();
   }
   const auto root = io::open_input(frag);
@@ -886,13 +887,16 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   EXPECT_EQ(in.n_excluded_min_cells, singles);
   EXPECT_EQ(static_cast<std::int64_t>(in.values.size()) + singles, 400);
   EXPECT_EQ(in.unit, "kg");
+  EXPECT_NEAR(in.mean_cell_mass(), 0.01, 0.01 * 0.05);  // cells of 0.01 kg × U(0.8, 1.2), the largest fragments dominating
   const auto counts = io::read_fragment_values(root, "cell_count", 0);
   EXPECT_EQ(counts.values.size(), 400u);
   EXPECT_THROW(io::read_fragment_values(root, "volume", 0), UsageError);
 
   FitOptions opt;
-  opt.bootstrap = 8, opt.gof_samples = 8;
-  const auto r = fit_powerlaw(in.values, opt, in.source);
+  opt.bootstrap = 8, opt.gof_samples = 8, opt.cell_mass = in.mean_cell_mass();
+  auto r = fit_powerlaw(in.values, opt, in.source);
+  const std::vector<std::size_t> halves{in.values.size() / 2, in.values.size() - in.values.size() / 2};
+  r.spread = input_spread(in.values, halves, r);
   const std::string fit = (dir / "fit.h5").string();
   {
     io::OutputFile out(fit);
@@ -915,7 +919,13 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   ASSERT_EQ(b.comparisons.size(), 3u);
   EXPECT_EQ(b.comparisons[1].R, r.comparisons[1].R);
   EXPECT_EQ(b.histogram.count, r.histogram.count);
+  EXPECT_GT(b.histogram.cluster_unit, 0);
+  EXPECT_EQ(b.histogram.cluster_unit, r.histogram.cluster_unit);
   EXPECT_EQ(b.logbin.slope, r.logbin.slope);
+  EXPECT_EQ(b.logbin_range.fit_min, r.logbin_range.fit_min);
+  EXPECT_EQ(b.spread.inputs, 2);
+  EXPECT_EQ(b.spread.logbin.per_input, r.spread.logbin.per_input);
+  EXPECT_EQ(b.spread.mle.jackknife_stderr, r.spread.mle.jackknife_stderr);
   EXPECT_EQ(froot.attr_string("unit", "fit/histogram/edges"), "kg");
   // Text output: key value lines, the primary's alpha unprefixed and beta = alpha stated.
   std::ostringstream text;
