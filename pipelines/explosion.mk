@@ -83,7 +83,7 @@ $(EX)/largest.png: $(EX)/largest.csv $(EX)/largest-fit.txt pipelines/plots/large
 # The explosion's initial kick (validation B1-B3), measured on the first seed's 3-4 run.
 EX_S1 := $(firstword $(EX_SEEDS))
 $(EX)/kick.csv: $(EX)/runs/3-4-s$(EX_S1).h5
-	@$(BIN)/observables $< --columns kinetic_energy_translational | sed -n 2p | \
+	@$(BIN)/observables $< --columns kinetic_energy_translational | grep -v '^#' | sed -n 2p | \
 	  awk -F, '{ printf "kinetic_energy_J,%s\n", $$2 }' > $@
 	@for k in mean_speed momentum_over_scale; do echo "kick_$$k,$$($(BIN)/observables $< --parameter derived.kick_$$k)"; done >> $@
 

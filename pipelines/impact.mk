@@ -8,15 +8,15 @@
 IM := $(RESULTS)/impact
 # 16 seeds resolve 0.1 in β at 2σ at the paper's size (the seed-to-seed standard deviation of the
 # log-binned slope is about 0.18, its jackknife error over 16 seeds 0.05). The larger sizes have four times the
-# cells and cost 10 to 13 times as much per run; 12 seeds resolve 0.1 at 2σ there too.
+# cells and twice the steps (about ten times the CPU a run); 12 seeds resolve 0.1 at 2σ there too.
 IM_SEEDS ?= $(if $(MINI),1 2,$(shell seq 1 16))
 IM_LARGE_SEEDS ?= $(if $(MINI),1 2,$(wordlist 1,12,$(IM_SEEDS)))
 IM_S1 := $(firstword $(IM_SEEDS))
 # The paper's estimator: the weighted slope of the log-binned F(m) over fragments of 2 to 25 cells, the
-# decade above the single cells over which F(m) is straight (χ²/dof about 1; beyond 25 cells it bends).
+# decade above the single cells over which F(m) is straight (χ²/dof 1.2 at the paper's size; beyond 25 cells
+# it bends).
 IM_LOGBIN := --logbin-min 2cells --logbin-max 25cells
 IM_FIT_OPTIONS := $(IM_LOGBIN) $(if $(MINI),--bootstrap 20 --gof-samples 20 --min-tail 5,--bootstrap 100 --gof-samples 100)
-IM_QUICK_FIT := $(IM_LOGBIN) --bootstrap 0 --gof-samples 0 --no-compare $(if $(MINI),--min-tail 5,)
 # MINI: cells of 2 cm and short runs.
 IM_SHORT := $(if $(MINI),--stop.t_max 1e-3 --output.frame_interval 2e-4,)
 
