@@ -31,6 +31,23 @@ double parse_bound(const std::string& text, const std::string& option) {
   throw UsageError(option + ": expected a number, got '" + text + "'");
 }
 
+// A bound of the log-binned slope fit: a value in the data's unit, or "<N>cells": N times the mean cell mass.
+struct Bound {
+  double value = 0;
+  bool in_cells = false;
+  double resolve(double cell_mass, const std::string& option) const {
+    if (!in_cells) return value;
+    if (!(cell_mass > 0)) throw UsageError(option + ": a bound in cells needs the mean cell mass (--cell-mass)");
+    return value * cell_mass;
+  }
+};
+
+Bound parse_bound_or_cells(const std::string& text, const std::string& option) {
+  const std::string suffix = "cells";
+  const bool cells = text.size() > suffix.size() && text.ends_with(suffix);
+  return {parse_bound(cells ? text.substr(0, text.size() - suffix.size()) : text, option), cells};
+}
+
 int run(int argc, char** argv) {
   const cli::ToolSpec spec{
       "powerlaw-fit", "[options] INPUT|-",
@@ -45,9 +62,13 @@ int run(int argc, char** argv) {
       "F(m) ~ m^-beta, beta = alpha; the CCDF N(>m) falls as m^-(alpha-1). Values that are NaN, infinite, "
       "zero or negative, fewer than 10 values or fewer than 3 distinct ones are refused (exit 2). Output: the "
       "/fit group of an HDF5 file of kind 'fit', or with --format text 'key value' lines (unprefixed keys are "
-      "the primary estimator; continuous_*, discrete_*, logbin_* the others; every key in docs/powerlaw-fit.md).",
+      "the primary estimator; continuous_*, discrete_*, logbin_* the others; every key in docs/powerlaw-fit.md). "
+      "With several inputs, both exponents are also fitted to each input alone (mean and standard error over "
+      "inputs) and to the pool with each input left out (jackknife error). Fragment masses cluster near whole "
+      "numbers of cells: the histogram's edges fall halfway between them (--cell-mass).",
       "  powerlaw-fit fragments.h5 -o fit.h5\n"
       "  powerlaw-fit fragments.h5 --column cell_count --min-cells 2 --format text\n"
+      "  powerlaw-fit frag-s1.h5 frag-s2.h5 frag-s3.h5 --logbin-min 2cells --logbin-max 25cells --format text\n"
       "  fragment-count run.h5 | powerlaw-fit - --format text --bootstrap 500 --gof-samples 1000\n"
       "  powerlaw-fit values.txt --format text | awk '$1 == \"alpha\" {print $2}'"};
   cli::CommonOptions common;
@@ -55,7 +76,7 @@ int run(int argc, char** argv) {
   std::vector<std::string> inputs;
   std::string input_format = "auto", format = "hdf5", column = "mass", ks = "two-sided", histogram_csv;
   std::string xmin_text, xmax_text, logbin_min = "xmin", logbin_max = "inf";
-  std::string min_cells_text = "file";
+  std::string min_cells_text = "file", cell_mass_text = "auto";
   bool no_compare = false;
   po::options_description desc("Options");
   desc.add_options()
@@ -88,9 +109,14 @@ int run(int argc, char** argv) {
        "p below this makes a likelihood-ratio test decisive ('favours')")
       ("bins-per-decade", po::value(&opt.bins_per_decade)->default_value(opt.bins_per_decade),
        "log-binned histogram: bins per decade")
+      ("cell-mass", po::value(&cell_mass_text)->default_value(cell_mass_text),
+       "mean cell mass: the histogram's edges fall halfway between the masses of fragments of k and k + 1 "
+       "cells. auto: total mass / cells of the fragments files (none for text input); 0: plain log bins; "
+       "or a value (cell counts always use 1)")
       ("logbin-min", po::value(&logbin_min)->default_value(logbin_min),
-       "lower end of the log-binned slope fit: xmin (the primary fit's), all, or a value")
-      ("logbin-max", po::value(&logbin_max)->default_value(logbin_max), "upper end of the log-binned slope fit")
+       "lower end of the log-binned slope fit: xmin (the primary fit's), all, a value, or N cells ('2cells')")
+      ("logbin-max", po::value(&logbin_max)->default_value(logbin_max),
+       "upper end of the log-binned slope fit: inf, a value, or N cells ('25cells')")
       ("threads", po::value(&opt.threads)->default_value(0), "threads for the resampling (0: all cores; results do not depend on it)")
       ("histogram-csv", po::value(&histogram_csv),
        "also write the log-binned density histogram as CSV (center,density,count,lower,upper) to this file");
@@ -113,10 +139,11 @@ int run(int argc, char** argv) {
     opt.scan.xmax = parse_bound(xmax_text, "--xmax");
     if (!(opt.scan.xmax > 0)) throw UsageError("--xmax: must be a positive number");
   }
-  if (logbin_min == "xmin") opt.logbin_min = std::numeric_limits<double>::quiet_NaN();
-  else if (logbin_min == "all") opt.logbin_min = 0;
-  else opt.logbin_min = parse_bound(logbin_min, "--logbin-min");
-  opt.logbin_max = logbin_max == "inf" ? std::numeric_limits<double>::infinity() : parse_bound(logbin_max, "--logbin-max");
+  const auto nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const Bound lower = logbin_min == "xmin" ? Bound{nan} : logbin_min == "all" ? Bound{0} : parse_bound_or_cells(logbin_min, "--logbin-min");
+  const Bound upper = logbin_max == "inf" ? Bound{inf} : parse_bound_or_cells(logbin_max, "--logbin-max");
+  const bool cell_mass_auto = cell_mass_text == "auto";
+  if (!cell_mass_auto) opt.cell_mass = parse_bound(cell_mass_text, "--cell-mass");
   opt.compare = !no_compare;
   opt.seed = common.seed;
 
@@ -149,7 +176,12 @@ int run(int argc, char** argv) {
     io::pool_into(values, one);
   }
 
-  const auto report = analysis::fit_powerlaw(values.values, opt, values.source);
+  if (cell_mass_auto) opt.cell_mass = values.column == "mass" ? values.mean_cell_mass() : 0.0;
+  const double cells_unit = values.column == "cell_count" ? 1.0 : opt.cell_mass;
+  opt.logbin_min = lower.resolve(cells_unit, "--logbin-min");
+  opt.logbin_max = upper.resolve(cells_unit, "--logbin-max");
+  auto report = analysis::fit_powerlaw(values.values, opt, values.source);
+  report.spread = analysis::input_spread(values.values, values.input_sizes, report);
 
   if (!histogram_csv.empty()) {
     std::ostringstream csv;

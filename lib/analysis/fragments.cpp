@@ -22,6 +22,10 @@ std::vector<double> Fragments::masses_at_least(std::int64_t min_cells) const {
   return out;
 }
 
+double Fragments::mean_cell_mass() const {
+  return cell_fragment.empty() ? 0.0 : total_mass / static_cast<double>(cell_fragment.size());
+}
+
 void UnionFind::reset(std::size_t n) {
   parent_.resize(n);
   size_.assign(n, 1);
@@ -228,7 +232,7 @@ LogHistogram mass_histogram(const Fragments& f, std::int64_t min_cells, double b
     h.bins_per_decade = bins_per_decade;
     return h;
   }
-  return log_histogram(masses, {bins_per_decade, false});
+  return log_histogram(masses, {bins_per_decade, false, f.mean_cell_mass()});
 }
 
 }  // namespace frac::analysis

@@ -46,6 +46,9 @@ struct Fragments {
   std::vector<double> kinetic_energy_rotational;     // [F] J, in the centre-of-mass frame
   double total_mass = 0.0;                  // kg, sum over all cells
 
+  // total_mass / N: a fragment of k cells weighs about k times this.
+  double mean_cell_mass() const;
+
   std::size_t fragments() const { return mass.size(); }
   // Fragments of at least `min_cells` cells, and of exactly one cell.
   std::size_t count_at_least(std::int64_t min_cells) const;
@@ -99,9 +102,10 @@ class FragmentCounter {
   std::vector<double> root_mass_;  // compensated sum (value, error) per root
 };
 
-// Log-binned density histogram (analysis/log_histogram: bins [10^(j/b), 10^((j+1)/b)) kg, density =
-// count / (n width) in kg^-1) of the masses of the fragments of at least `min_cells` cells. No bins
-// when no fragment is that large. UsageError for bins_per_decade <= 0.
+// Log-binned density histogram (analysis/log_histogram: bins [10^(j/b), 10^((j+1)/b)) kg with their edges
+// moved halfway between the cell-count clusters of the mean cell mass, density = count / (n width) in
+// kg^-1) of the masses of the fragments of at least `min_cells` cells. No bins when no fragment is that
+// large. UsageError for bins_per_decade <= 0.
 LogHistogram mass_histogram(const Fragments& f, std::int64_t min_cells, double bins_per_decade);
 
 }  // namespace frac::analysis

@@ -26,6 +26,7 @@ FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, co
   if (opt.gof_samples < 0) throw UsageError("--gof-samples: must be >= 0");
   if (opt.scan.min_tail < 2) throw UsageError("--min-tail: must be >= 2");
   if (!(opt.bins_per_decade > 0)) throw UsageError("--bins-per-decade: must be > 0");
+  if (!(opt.cell_mass >= 0) || !std::isfinite(opt.cell_mass)) throw UsageError("--cell-mass: must be >= 0");
   if (!(opt.scan.xmax > 0)) throw UsageError("--xmax: must be > 0");
   if (std::isfinite(opt.scan.xmin) && !(opt.scan.xmin > 0)) throw UsageError("--xmin: must be > 0");
   if (std::isfinite(opt.scan.xmin) && !(opt.scan.xmin < opt.scan.xmax)) throw UsageError("--xmin must be below --xmax");
@@ -75,11 +76,10 @@ FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, co
   const EstimatorResult& primary = r.primary_result();
   if (opt.compare) r.comparisons = compare_alternatives(primary.model, s, primary.fit, opt.significance);
 
-  r.histogram = log_histogram(kept, {opt.bins_per_decade, r.integer_data});
-  LogSlopeOptions so;
-  so.fit_min = std::isnan(opt.logbin_min) ? primary.fit.xmin : opt.logbin_min;
-  so.fit_max = opt.logbin_max;
-  r.logbin = fit_log_slope(r.histogram, so);
+  r.histogram = log_histogram(kept, {opt.bins_per_decade, r.integer_data, opt.cell_mass});
+  r.logbin_range.fit_min = std::isnan(opt.logbin_min) ? primary.fit.xmin : opt.logbin_min;
+  r.logbin_range.fit_max = opt.logbin_max;
+  r.logbin = fit_log_slope(r.histogram, r.logbin_range);
   return r;
 }
 

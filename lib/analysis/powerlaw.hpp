@@ -6,6 +6,7 @@
 //   discrete_mle      the same with the exact discrete (Hurwitz zeta) likelihood, for integer data
 //   log_binned_slope  weighted least-squares slope of the log-binned density histogram (the classical method)
 //   comparison        likelihood-ratio tests of the primary fit against exponential, lognormal, cutoff
+//   spread            both exponents per pooled input and left out in turn (analysis/powerlaw_spread)
 // Exponent convention: every alpha here is the exponent of the probability DENSITY, p(x) ~ x^-alpha. For a
 // fragment mass distribution written F(m) ~ m^-beta (number of fragments per unit mass), beta = alpha.
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "analysis/powerlaw_common.hpp"
 #include "analysis/powerlaw_compare.hpp"
 #include "analysis/powerlaw_gof.hpp"
+#include "analysis/powerlaw_spread.hpp"
 
 namespace frac::analysis {
 
@@ -29,6 +31,9 @@ struct FitOptions {
   bool compare = true;         // likelihood-ratio tests against the alternatives
   double significance = 0.1;   // p below this makes a likelihood-ratio test decisive (CSN use 0.1)
   double bins_per_decade = 5;  // log-binned histogram
+  // Mean cell mass of fragment masses (0: none): the histogram's edges fall halfway between the masses of
+  // fragments of k and k + 1 cells (analysis/log_histogram). Integer data use 1.
+  double cell_mass = 0;
   // Lower end of the log-binned slope fit: NaN = the primary MLE's x_min; 0 = all data; else a value.
   double logbin_min = std::numeric_limits<double>::quiet_NaN();
   double logbin_max = std::numeric_limits<double>::infinity();
@@ -52,7 +57,9 @@ struct FitReport {
   std::vector<EstimatorResult> mle;  // continuous_mle, then discrete_mle for integer data
   std::vector<Comparison> comparisons;  // for the primary estimator's tail
   LogHistogram histogram;         // of all values fitted
+  LogSlopeOptions logbin_range;   // the range the log-binned slope was fitted over (x_min resolved)
   LogSlopeFit logbin;
+  InputSpread spread;             // over the pooled inputs (add_input_spread; inputs = 0 when not computed)
   FitOptions options;
 
   const EstimatorResult& primary_result() const;

@@ -82,6 +82,35 @@ LoadingSetup explosion_kick(const Loading& loading, const mesh::CellMesh& mesh, 
   return setup;
 }
 
+// The projectile: the bottom-layer cell nearest the middle of the bottom edge, or with impact_width w > 0
+// every cell whose centroid lies in the w × w square resting on the middle of the bottom edge (the same
+// projectile on a finer mesh). All fly into the block (+y) at one speed: impact_speed, or the speed that
+// gives them impact_energy.
+LoadingSetup impact_kick(const Loading& loading, const mesh::CellMesh& mesh, const Bodies& bodies,
+                         std::span<double> v0, double depth) {
+  LoadingSetup setup;
+  const std::size_t n = mesh.cells();
+  const auto& b = mesh.bounds;
+  const double xc = 0.5 * (b[0] + b[2]), w = loading.impact_width;
+  std::size_t src = n;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2& c = mesh.centroid[k];
+    if (w > 0 && std::abs(c.x() - xc) < 0.5 * w && c.y() < b[1] + w) setup.kicked.push_back(k);
+    if (c.y() >= b[1] + (w > 0 ? w : depth)) continue;
+    if (src == n || std::abs(c.x() - xc) < std::abs(mesh.centroid[src].x() - xc)) src = k;
+  }
+  if (src == n)
+    throw InputError("loading.kind = impact: no cell within " + std::to_string(w > 0 ? w : depth) + " m of the bottom edge");
+  if (setup.kicked.empty()) setup.kicked.push_back(src);
+  setup.source = src;
+  double mass = 0;
+  for (std::size_t k : setup.kicked) mass += bodies.mass[k];
+  const double speed = loading.impact_energy > 0 ? std::sqrt(2 * loading.impact_energy / mass) : loading.impact_speed;
+  for (std::size_t k : setup.kicked) v0[n + k] = speed;
+  setup.kinetic_energy = 0.5 * mass * speed * speed;
+  return setup;
+}
+
 }  // namespace
 
 double LoadingProbe::stress(std::span<const double> force, std::size_t n) const {
@@ -153,22 +182,7 @@ LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, M
     }
     case LoadingKind::explosion:
     case LoadingKind::pulse: setup = explosion_kick(loading, mesh, bodies, v0); break;
-    case LoadingKind::impact: {
-      const double xc = 0.5 * (b[0] + b[2]);
-      std::size_t src = n;
-      for (std::size_t k = 0; k < n; ++k) {
-        if (mesh.centroid[k].y() >= b[1] + depth) continue;
-        if (src == n || std::abs(mesh.centroid[k].x() - xc) < std::abs(mesh.centroid[src].x() - xc)) src = k;
-      }
-      if (src == n) throw InputError("loading.kind = impact: no cell within " + std::to_string(depth) + " m of the bottom edge");
-      setup.source = src;
-      setup.kicked.push_back(src);
-      const double speed = loading.impact_energy > 0 ? std::sqrt(2 * loading.impact_energy / bodies.mass[src])
-                                                     : loading.impact_speed;
-      v0[n + src] = speed;
-      setup.kinetic_energy = 0.5 * bodies.mass[src] * speed * speed;
-      break;
-    }
+    case LoadingKind::impact: setup = impact_kick(loading, mesh, bodies, v0, depth); break;
   }
   return setup;
 }

@@ -29,6 +29,7 @@ DemScene read_dem_scene(Scene& s) {
   if (l.kind == LoadingKind::impact) {
     l.impact_speed = s.positive("loading.impact_speed", l.impact_speed);
     l.impact_energy = s.non_negative("loading.impact_energy", l.impact_energy);
+    l.impact_width = s.non_negative("loading.impact_width", l.impact_width);
     l.layer_depth = s.non_negative("loading.layer_depth", l.layer_depth);
   }
   IntegratorSettings& in = d.integrator;

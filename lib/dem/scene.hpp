@@ -28,6 +28,9 @@ struct Loading {
   // impact: if > 0, the projectile's kinetic energy instead (J): its speed is √(2E/m) for the mass of
   // the cell the mesh puts there (the paper's 400 m/s came with ≈ 457 J, a 5.7 g cell).
   double impact_energy = 0.0;
+  // impact: 0 = the projectile is one cell; w > 0 = every cell whose centroid lies in the w × w square on
+  // the middle of the bottom edge (m): the same projectile on meshes of any cell size.
+  double impact_width = 0.0;
 };
 
 struct IntegratorSettings {

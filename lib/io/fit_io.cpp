@@ -5,12 +5,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <numeric>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -41,6 +43,12 @@ std::string fmt(double v) {
 }
 
 std::int64_t as_int(bool b) { return b ? 1 : 0; }
+
+// The two estimators of an InputSpread with their HDF5 group names.
+template <class Spread>
+auto spread_parts(Spread& s) {
+  return std::array{std::pair{"mle", &s.mle}, std::pair{"log_binned_slope", &s.logbin}};
+}
 
 const char* ks_name(analysis::KsConvention k) {
   return k == analysis::KsConvention::two_sided ? "two_sided" : "powerlaw_r";
@@ -111,9 +119,11 @@ FitInput read_fragment_values(const Group& root, const std::string& column, std:
   }
   in.n_read = static_cast<std::int64_t>(in.values.size());
   if (g.has_attr("min_cells")) in.fragments_min_cells = g.attr_int("min_cells");
+  const auto cells = g.read<std::int64_t>("cell_count", nullptr, 1);
+  in.cells = std::accumulate(cells.begin(), cells.end(), std::int64_t{0});
+  if (g.has_attr("total_mass")) in.total_mass = g.attr_double("total_mass");
   if (min_cells > 0) {
     in.min_cells = min_cells;
-    const auto cells = g.read<std::int64_t>("cell_count", nullptr, 1);
     if (cells.size() != in.values.size())
       throw InputError(g.where("cell_count") + ": " + std::to_string(cells.size()) + " entries, but " + column +
                        " has " + std::to_string(in.values.size()));
@@ -227,6 +237,7 @@ void write_fit(Group& root, const FitReport& r, const FitInput& input) {
   Group hg = fit.create_group("histogram");
   hg.set_attr("bins_per_decade", h.bins_per_decade);
   hg.set_attr("integer_data", as_int(h.integer_data));
+  hg.set_attr("cell_mass", h.cluster_unit);
   hg.set_attr("n_total", h.n_total);
   hg.set_attr("density_definition", "count / (n_total * width): per unit of x, normalised to 1 over all values");
   const auto K = static_cast<hsize_t>(h.size());
@@ -252,7 +263,24 @@ void write_fit(Group& root, const FitReport& r, const FitInput& input) {
   lg.set_attr("fit_min", l.fit_min);
   lg.set_attr("fit_max", l.fit_max);
   lg.set_attr("bins_per_decade", h.bins_per_decade);
+  lg.set_attr("range_min", r.logbin_range.fit_min);
+  lg.set_attr("range_max", r.logbin_range.fit_max);
   lg.set_attr("method", "weighted least squares of ln(density) on ln(center), weights = counts; see /fit/histogram");
+
+  if (r.spread.inputs > 0) {
+    Group sg = fit.create_group("input_spread");
+    sg.set_attr("inputs", static_cast<std::int64_t>(r.spread.inputs));
+    for (const auto& [name, e] : spread_parts(r.spread)) {
+      Group g = sg.create_group(name);
+      g.set_attr("n_ok", static_cast<std::int64_t>(e->n_ok));
+      g.set_attr("mean", e->mean);
+      g.set_attr("stderr_mean", e->stderr_mean);
+      g.set_attr("jackknife_stderr", e->jackknife_stderr);
+      const auto n = static_cast<hsize_t>(e->per_input.size());
+      g.write("alpha_per_input", std::span<const double>(e->per_input), {n}, "1");
+      g.write("alpha_leave_one_out", std::span<const double>(e->leave_one_out), {n}, "1");
+    }
+  }
 }
 
 FitReport read_fit(const Group& root) {
@@ -322,6 +350,7 @@ FitReport read_fit(const Group& root) {
   const Group hg = fit.group("histogram");
   r.histogram.bins_per_decade = hg.attr_double("bins_per_decade");
   r.histogram.integer_data = hg.attr_int("integer_data") != 0;
+  r.histogram.cluster_unit = hg.attr_double("cell_mass");
   r.histogram.n_total = hg.attr_int("n_total");
   r.histogram.edges = hg.read<double>("edges", nullptr, 1);
   r.histogram.count = hg.read<std::int64_t>("count", nullptr, 1);
@@ -339,6 +368,21 @@ FitReport read_fit(const Group& root) {
   r.logbin.n_bins = static_cast<int>(lg.attr_int("n_bins"));
   r.logbin.fit_min = lg.attr_double("fit_min");
   r.logbin.fit_max = lg.attr_double("fit_max");
+  r.logbin_range.fit_min = lg.attr_double("range_min");
+  r.logbin_range.fit_max = lg.attr_double("range_max");
+  if (fit.has("input_spread")) {
+    const Group sg = fit.group("input_spread");
+    r.spread.inputs = static_cast<int>(sg.attr_int("inputs"));
+    for (const auto& [name, e] : spread_parts(r.spread)) {
+      const Group g = sg.group(name);
+      e->n_ok = static_cast<int>(g.attr_int("n_ok"));
+      e->mean = g.attr_double("mean");
+      e->stderr_mean = g.attr_double("stderr_mean");
+      e->jackknife_stderr = g.attr_double("jackknife_stderr");
+      e->per_input = g.read<double>("alpha_per_input");
+      e->leave_one_out = g.read<double>("alpha_leave_one_out");
+    }
+  }
   return r;
 }
 
@@ -404,11 +448,26 @@ void write_fit_text(std::ostream& out, const FitReport& r, const FitInput& input
   kd("logbin_alpha", -l.slope);
   kd("logbin_alpha_stderr", l.slope_stderr);
   kd("logbin_slope", l.slope);
+  kd("logbin_intercept", l.intercept);
   kd("logbin_chi2_per_dof", l.chi2_per_dof);
   ki("logbin_bins", l.n_bins);
   kd("logbin_fit_min", l.fit_min);
   kd("logbin_fit_max", l.fit_max);
   kd("logbin_bins_per_decade", r.histogram.bins_per_decade);
+  kd("logbin_cell_mass", r.histogram.cluster_unit);
+  kd("logbin_range_min", r.logbin_range.fit_min);
+  kd("logbin_range_max", r.logbin_range.fit_max);
+  if (r.spread.inputs == 0) return;
+  ki("inputs", r.spread.inputs);
+  for (const auto& [name, e] : spread_parts(r.spread)) {
+    const std::string k = std::string(name) == "mle" ? "alpha" : "logbin_alpha";
+    std::string list;
+    for (double v : e->per_input) list += (list.empty() ? "" : " ") + fmt(v);
+    kv(k + "_inputs", list);
+    kd(k + "_input_mean", e->mean);
+    kd(k + "_input_stderr", e->stderr_mean);
+    kd(k + "_jackknife_stderr", e->jackknife_stderr);
+  }
 }
 
 void write_text_output(const std::string& path, const std::string& text) { write_file_atomically(path, text); }
@@ -416,6 +475,7 @@ void write_text_output(const std::string& path, const std::string& text) { write
 void pool_into(FitInput& pooled, const FitInput& one) {
   if (pooled.source.empty()) {
     pooled = one;
+    pooled.input_sizes = {one.values.size()};
     return;
   }
   if (pooled.unit != one.unit || pooled.column != one.column)
@@ -425,6 +485,9 @@ void pool_into(FitInput& pooled, const FitInput& one) {
   pooled.source += " + " + one.source;
   pooled.n_read += one.n_read;
   pooled.n_excluded_min_cells += one.n_excluded_min_cells;
+  pooled.total_mass += one.total_mass;
+  pooled.cells += one.cells;
+  pooled.input_sizes.push_back(one.values.size());
   pooled.min_cells = std::max(pooled.min_cells, one.min_cells);
   if (pooled.fragments_min_cells != one.fragments_min_cells) pooled.fragments_min_cells = -1;
 }

@@ -2,6 +2,7 @@
 // powerlaw-fit's file formats: the values to fit (a /fragments file, or a plain column of numbers) and the
 // fit itself (the /fit group of an HDF5 file of kind "fit", or "key value" lines for shell scripts).
 // Layout and keys: docs/powerlaw-fit.md.
+#include <cmath>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -22,6 +23,15 @@ struct FitInput {
   std::int64_t n_excluded_min_cells = 0;   // fragments below --min-cells (reported, never silent)
   std::int64_t min_cells = 0;              // the --min-cells filter applied (0: none)
   std::int64_t fragments_min_cells = -1;   // min_cells attribute of the fragments file (-1: none)
+  double total_mass = 0;                   // kg: all cells of the fragments files read (0 for text)
+  std::int64_t cells = 0;                  // their number
+  std::vector<std::size_t> input_sizes;    // values from each pooled input, in order (pool_into)
+
+  // total_mass / cells: what a fragment of k cells weighs about k times (0 without fragments files, or when a
+  // mass is not finite: the fit refuses those values anyway).
+  double mean_cell_mass() const {
+    return cells > 0 && total_mass > 0 && std::isfinite(total_mass) ? total_mass / static_cast<double>(cells) : 0.0;
+  }
 };
 
 // One number a line; blank lines and '#' comments skipped. InputError naming `name`, the number of bad lines
@@ -54,7 +64,8 @@ void write_fit_text(std::ostream& out, const analysis::FitReport& report, const 
 void write_text_output(const std::string& path, const std::string& text);
 
 // Appends the values of `one` to `pooled` (the sample of several files): sources joined with " + ",
-// counts added; the unit and column must agree (InputError otherwise).
+// counts, masses and cells added, its size appended to input_sizes; the unit and column must agree
+// (InputError otherwise).
 void pool_into(FitInput& pooled, const FitInput& one);
 // The log-binned density histogram as CSV: the provenance line as a '#' comment, the header
 // center,density,count,lower,upper, the bins.

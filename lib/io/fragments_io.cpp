@@ -139,6 +139,7 @@ void write_fragments(Group& root, const FragmentRecord& r) {
   std::vector<double> upper(k ? h.edges.begin() + 1 : h.edges.end(), h.edges.end());
   Group hg = g.create_group("histogram");
   hg.set_attr("bins_per_decade", h.bins_per_decade);
+  hg.set_attr("cell_mass", h.cluster_unit);
   hg.set_attr("min_cells", r.min_cells);
   hg.set_attr("n", h.n_total);
   hg.write("bin_lower", std::span<const double>(lower), {k}, "kg");
@@ -201,6 +202,7 @@ FragmentRecord read_fragments(const Group& root) {
   const Group h = g.group("histogram");
   auto& hist = r.histogram;
   hist.bins_per_decade = h.attr_double("bins_per_decade");
+  if (h.has_attr("cell_mass")) hist.cluster_unit = h.attr_double("cell_mass");
   hist.n_total = h.attr_int("n");
   const auto lower = h.read<double>("bin_lower", nullptr, 1);
   const std::size_t k = lower.size();

@@ -35,6 +35,9 @@ png() {
 make -C "$src" -f Makefile.analysis MINI=1 NO_BUILD=1 BUILD="$build" RESULTS="$work" JOBS=2 "$experiment" > "$work/make.log" 2>&1 ||
   { tail -n 30 "$work/make.log"; fail "make $experiment"; }
 
+# Both estimators of β (scripts/fit-row.awk) and the largest fragment against the energy (scripts/largest-share.sh).
+fit_columns=fragments,beta_mle,beta_mle_stderr,beta_bootstrap_std,xmin_cells,n_tail,gof_p,beta_mle_seed_mean,beta_mle_seed_stderr,beta_logbin,beta_logbin_jackknife,logbin_chi2_per_dof,beta_logbin_seed_mean,beta_logbin_seed_stderr,logbin_min_cells,logbin_max_cells
+largest_columns=energy_J,energy_per_mass_J_per_kg,seeds,largest_share,largest_share_stderr
 case $experiment in
   demo)
     markdown summary.md
@@ -59,18 +62,21 @@ case $experiment in
     for t in 0.025 0.028 0.03; do png broken-maps/broken-$t.png; done
     ;;
   explosion)
-    columns betas.csv "t_eps_percent,t_theta_deg,beta_mle,beta_mle_stderr,beta_bootstrap_std,xmin_kg,n_tail,gof_p,beta_logbin,beta_logbin_stderr"
+    columns betas.csv "t_eps_percent,t_theta_deg,seeds,$fit_columns"
+    columns largest.csv "$largest_columns"
     columns ours.csv "quantity,value,error"
     markdown table.md
-    png histograms.png
+    png histograms.png; png largest.png
     for t in 1e-4 1e-3 4e-3; do png snapshots/explosion-$t.png; done
     png snapshots/fragments.png
     for t in 1e-4 3e-4 5e-4; do png pulse/pulse-$t.png; done
     ;;
   impact)
+    columns betas.csv "size,block_m,cells,seeds,impact_energy_J,energy_per_mass_J_per_kg,$fit_columns"
+    columns largest.csv "$largest_columns"
     columns ours.csv "quantity,value,error"
     markdown table.md
-    png histogram.png
+    png histogram.png; png largest.png
     for t in 4e-4 1.5e-3 3e-3; do png snapshots/impact-$t.png; done
     ;;
   rubber-crack)

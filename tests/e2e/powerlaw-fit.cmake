@@ -4,7 +4,7 @@ add_executable(powerlaw_fit_make_input ${CMAKE_CURRENT_SOURCE_DIR}/powerlaw_fit_
 target_link_libraries(powerlaw_fit_make_input PRIVATE fracture fracture_warnings)
 set_target_properties(powerlaw_fit_make_input PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests/e2e)
 
-foreach(case help text pipe reproducible cell-count xmax bad-input chain reference)
+foreach(case help text pipe reproducible cell-count pooled xmax bad-input chain reference)
   add_test(NAME e2e.powerlaw-fit.${case}
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/powerlaw_fit.sh $<TARGET_FILE_DIR:powerlaw-fit>
                    $<TARGET_FILE:powerlaw_fit_make_input> ${CMAKE_CURRENT_BINARY_DIR}/work/powerlaw-fit-${case} ${case}

@@ -18,6 +18,12 @@ field() { awk -v k="$1" -v n="$2" '$1 == k { print $(n + 1); exit }' "$3"; }
 attr() {
   h5dump -m %.17g -w 0 -a "$2/$3" "$1" | awk '/^ *\(0\)/ { sub(/^ *\(0\): */, ""); gsub(/"/, ""); print; exit }'
 }
+# documented FILE: every key of a "key value" file is in the documentation.
+documented() {
+  for k in $(awk '!/^#/ { print $1 }' "$1"); do
+    grep -qF -- "\`$k\`" "$doc" || fail "key '$k' is not documented in $doc"
+  done
+}
 # check "description" awk-condition var=value...: evaluates the condition with the variables set.
 check() {
   local what=$1 cond=$2; shift 2
@@ -60,9 +66,7 @@ case $case in
     [[ $(key lr_exponential_favours fit.txt) == power_law ]] || fail "power law not favoured over the exponential"
     grep -q "powerlaw-fit: continuous_mle: alpha" stderr.txt || fail "no summary on stderr"
     # Every key printed is documented.
-    for k in $(awk '!/^#/ { print $1 }' fit.txt); do
-      grep -qF -- "\`$k\`" "$doc" || fail "key '$k' is not documented in $doc"
-    done
+    documented fit.txt
     # Standard input gives the same.
     "$pf" - --format text --bootstrap 50 --gof-samples 50 < in.txt | sed '/^source /d' > stdin.txt
     sed '/^source /d' fit.txt | diff - stdin.txt || fail "standard input and file differ"
@@ -113,6 +117,34 @@ case $case in
     a=$(key alpha fit.txt) se=$(key alpha_stderr fit.txt)
     check "alpha within 3 SE of 2" "a - 2 < 3 * se && 2 - a < 3 * se" a="$a" se="$se"
     [[ -n $(key continuous_alpha fit.txt) && -n $(key discrete_alpha fit.txt) ]] || fail "both estimators side by side"
+    ;;
+  pooled)
+    # Three fragments files (masses k cells x 1e-3 kg x U(0.9, 1.1), k from a discrete power law alpha = 2)
+    # pooled: the mean cell mass from the files (1e-3 kg within 3 %: the total is dominated by the few largest
+    # fragments, each off by up to 10 %), the histogram's edges halfway between
+    # whole numbers of cells, the log-binned slope over 2 ... 30 cells, both exponents per input and their
+    # jackknife errors; every key documented. A range in cells needs the cell mass.
+    for s in 1 2 3; do "$make_input" fragments in$s.h5 1500 2.0 $((30 + s)); done
+    "$pf" in1.h5 in2.h5 in3.h5 --format text --bootstrap 0 --gof-samples 0 --logbin-min 2cells --logbin-max 30cells \
+      --histogram-csv hist.csv -q > fit.txt
+    cat fit.txt hist.csv
+    u=$(key logbin_cell_mass fit.txt)
+    check "mean cell mass" "u > 0.97e-3 && u < 1.03e-3" u="$u"
+    check "range in cells (10 digits printed)" "(lo / (2 * u) - 1)^2 < 1e-16 && (hi / (30 * u) - 1)^2 < 1e-16" \
+      lo="$(key logbin_range_min fit.txt)" hi="$(key logbin_range_max fit.txt)" u="$u"
+    # 10 digits printed: a half-multiple r u is read back within 1e-8 r of it.
+    awk -F, -v u="$u" 'NR > 1 && !/^#/ { for (i = 4; i <= 5; i++) { r = $i / u + 0.5; if ($i >= u / 2 && (r - int(r + 0.5))^2 > (1e-8 * r)^2) { print "edge " $i " is not a half-multiple of " u; bad = 1 } } }
+      END { exit bad }' hist.csv || fail "histogram edges between the cell-count clusters"
+    [[ $(key inputs fit.txt) == 3 ]] || fail "inputs"
+    [[ $(awk '$1 == "logbin_alpha_inputs" { print NF - 1 }' fit.txt) == 3 ]] || fail "a log-binned slope per input"
+    for k in alpha logbin_alpha; do
+      check "$k: per-input mean within 0.15 of 2" "m > 1.85 && m < 2.15" m="$(key ${k}_input_mean fit.txt)"
+      check "$k: jackknife error positive, below 0.2" "e > 0 && e < 0.2" e="$(key ${k}_jackknife_stderr fit.txt)"
+    done
+    documented fit.txt
+    "$make_input" text in.txt 100 2.0 3
+    rm fit.txt hist.csv
+    expect_refusal "a bound in cells needs the mean cell mass" "$pf" in.txt --logbin-min 2cells -o out.h5
     ;;
   xmax)
     # An upper cutoff: values above it are left out and counted; the truncated fit is still near the truth.

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -276,6 +277,68 @@ TEST(DemModel, EnergyBalanceInEveryScene) {
       EXPECT_GT(s.broken, 0) << c.name << ": the run should break beams";
     }
   }
+}
+
+// The impact's projectile (physics/polygon-dem.md §8.4; loading.impact_width): on the paper's mesh one cell
+// at the middle of the bottom edge; on a mesh of half the cell size, the cells whose centroids lie in the
+// paper cell's square (impact_width = kG). Both carry the scene's 457 J exactly (the speed follows from
+// the mass), all kicked cells fly straight into the block at one speed, and the finer projectile weighs
+// about one paper cell (ρ h kG²; ±50 %: four Voronoi centroids sampling a square, whose bottom row is
+// clipped by the edge).
+TEST(DemModel, ImpactProjectileKeepsItsEnergyOnAFinerMesh) {
+  frac::mesh::RandomLatticeOptions o;
+  o.shape = "rect";
+  o.nx = 48, o.ny = 24, o.width = 24 * kG, o.height = 12 * kG, o.seed = 9;
+  const CellMesh fine = frac::mesh::make_random_lattice(o);
+  const auto coarse_scene = load_scene("impact", {});
+  const auto fine_scene = load_scene("impact", {{"loading.impact_width", std::to_string(kG)}, {"integrator.dt", "5e-7"}});
+  for (const auto& [mesh, scene] : {std::pair{rect_mesh(24, 12, 9), coarse_scene}, std::pair{fine, fine_scene}}) {
+    const frac::dem::Simulation sim(mesh, scene);
+    const auto kick = frac::dem::kick_report(sim);
+    const std::size_t n = mesh.cells();
+    double mass = 0;
+    for (std::size_t k : sim.setup.kicked) {
+      EXPECT_EQ(sim.v0[k], 0.0);
+      EXPECT_DOUBLE_EQ(sim.v0[n + k], kick.mean_speed);
+      mass += sim.model.bodies().mass[k];
+    }
+    EXPECT_EQ(kick.cells, sim.setup.kicked.size());
+    EXPECT_NEAR(kick.kinetic_energy, 457.0, 1e-9 * 457);
+    EXPECT_NEAR(kick.momentum_over_scale, 1.0, 1e-12);  // all along +y
+    if (scene.loading.impact_width > 0) {
+      EXPECT_GE(kick.cells, 2u);
+      const double paper_cell = scene.material.density * scene.material.thickness * kG * kG;
+      EXPECT_GT(mass, 0.5 * paper_cell);
+      EXPECT_LT(mass, 1.5 * paper_cell);
+    } else {
+      EXPECT_EQ(kick.cells, 1u);
+    }
+  }
+}
+
+// The model has no length scale (strain thresholds, moduli, no damping): a block twice as large, on the same
+// mesh scaled by 2 (exact in binary floating point), hit with four times the energy (the same energy per mass)
+// and run twice as long at twice the time step, breaks exactly the same beams. So a larger block of the
+// same cells at the same specific energy is the same experiment as finer cells in the same block.
+TEST(DemModel, ImpactOnABlockTwiceAsLargeBreaksTheSameBeams) {
+  const auto text = [](double v) { return (std::ostringstream() << std::setprecision(17) << v).str(); };
+  std::vector<std::vector<std::uint8_t>> intact;
+  for (double scale : {1.0, 2.0}) {
+    frac::mesh::RandomLatticeOptions o;
+    o.shape = "rect";
+    o.nx = 20, o.ny = 10, o.width = scale * 20 * kG, o.height = scale * 10 * kG, o.seed = 12;
+    const auto scene = load_scene("impact", {{"loading.impact_energy", text(457 * scale * scale)},
+                                             {"integrator.dt", text(5e-7 * scale)},
+                                             {"stop.t_max", text(4e-4 * scale)}});
+    const CellMesh mesh = frac::mesh::make_random_lattice(o);  // the simulation keeps a reference
+    frac::dem::Simulation sim(mesh, scene);
+    frac::Progress progress("test", true);
+    const auto s = sim.run(nullptr, progress);
+    EXPECT_GT(s.broken, 20) << "the impact should break beams";
+    const auto flags = sim.model.beams().intact();
+    intact.emplace_back(flags.begin(), flags.end());
+  }
+  EXPECT_EQ(intact[0], intact[1]);
 }
 
 // ------------------------------------------------------------------ breaking on real beams

@@ -441,12 +441,13 @@ TEST(MassHistogram, BinsTheFragmentsOfAtLeastMinCells) {
   s.cut(0, 3);
   const Fragments f = analysis::find_fragments(s.view());
   ASSERT_EQ(f.mass, (std::vector<double>{39.0, 5.0, 1.0}));  // ring without 0, centre (5), corner (1)
-  // All three, one bin a decade: [1, 10) holds 5 and 1, [10, 100) holds 39.
+  // All three, one bin a decade of the mean cell mass u = 45/9 = 5: the edges 0.1u, u and 10u, the last two
+  // moved halfway between whole numbers of cells (0.5u, 9.5u): [0.5, 2.5) holds 1, [2.5, 47.5) holds 5 and 39.
   auto h = analysis::mass_histogram(f, 1, 1.0);
-  ASSERT_EQ(h.count, (std::vector<std::int64_t>{2, 1}));
-  EXPECT_EQ(h.edges, (std::vector<double>{1.0, 10.0, 100.0}));
-  EXPECT_DOUBLE_EQ(h.density[0], 2.0 / (3.0 * 9.0));
-  EXPECT_DOUBLE_EQ(h.density[1], 1.0 / (3.0 * 90.0));
+  ASSERT_EQ(h.count, (std::vector<std::int64_t>{1, 2}));
+  EXPECT_EQ(h.edges, (std::vector<double>{0.5, 2.5, 47.5}));
+  EXPECT_DOUBLE_EQ(h.density[0], 1.0 / (3.0 * 2.0));
+  EXPECT_DOUBLE_EQ(h.density[1], 2.0 / (3.0 * 45.0));
   // Without single cells only the ring is left; with min_cells 9 nothing is: no bins.
   h = analysis::mass_histogram(f, 2, 5.0);
   EXPECT_EQ(h.n_total, 1);
