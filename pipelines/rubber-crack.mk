@@ -1,11 +1,15 @@
 # rubber-crack: a crack seeded from the left edge of a strip pre-stretched to (λx, λy), Marder's rubber lattice
-# (physics/rubber-lattice.md §6, rubber-lattice-validation.md §D). Each lever the issue names is a separate
-# switch of data/scenes/stretch.ini; every run records how far the tip went, its speed over the last stretch of
-# advance (λx × reference tip x, fitted), the lattice's own c_T and c_L along x at the run's law, the energy
-# balance and the bonds past u_c. Ends in results/rubber-crack/table.{csv,md} and a snapshot of the run that
-# went furthest. docs/rubber-run.md discusses the outcome.
-#   make -f Makefile.analysis rubber-crack [RC_NODES=300x60] [RC_TMAX=2e-3] [JOBS=2]
-# MINI=1 (the end-to-end test): a 60 × 16 strip for 4 time units, two levers and one stretch.
+# (physics/rubber-lattice.md §6, rubber-lattice-validation.md §D), in two parts.
+# The paper's failure law (results/rubber-crack/table.{csv,md}, snapshot.png): each lever the issue names is a
+# separate switch of data/scenes/stretch.ini on a 200 × 40 strip for 1 ms; every run records how far the tip
+# went, its speed over the last stretch of advance (λx × reference tip x, fitted), the lattice's own c_T and
+# c_L along x at the run's law, the energy balance and the bonds past u_c.
+# Energy-neutral failure (law.failure = freeze) with a crack path (crack.path_cutoff_ratio), on 400 × 80 strips
+# (results/rubber-crack/freeze.{csv,md}, crack.png, crack-toughened.png): the steady crack, its speed against
+# the stretch and b, the strip's height, the path's contrast, toughening and damping, the wedge's angle
+# against the Mach angles, and the wake. docs/rubber-run.md discusses the outcome.
+#   make -f Makefile.analysis rubber-crack [RC_NODES=300x60] [RC_TMAX=2e-3] [RCF_LENGTH=400] [JOBS=2]
+# MINI=1 (the end-to-end test): 60 × 16 and 160 × 20 strips, a few runs of each part.
 RC := $(RESULTS)/rubber-crack
 RC_NODES ?= $(if $(MINI),60x16,200x40)
 RC_TMAX ?= $(if $(MINI),1e-4,1e-3)
@@ -48,20 +52,25 @@ RC_OPT_three-body-0.02 := $(RC_THREE_BODY) --material.b 0.02
 RC_OPT_three-body-0.05 := $(RC_THREE_BODY) --material.b 0.05
 RC_OPT_three-body-0.1 := $(RC_THREE_BODY) --material.b 0.1
 RC_OPT_three-body-0.25 := $(RC_THREE_BODY) --material.b 0.25
-RC_LEVERS ?= $(if $(MINI),paper weight,paper irreversible damped near-failure toughened c1 kick soft soft-all weight \
-             weight-uc10 weight-soft weight-ramp pair-only three-body-0.02 three-body-0.05 three-body-0.1 \
-             three-body-0.25)
-# The stretch across the crack, with the softening law placed 0.02Δ + L above each far field.
-RC_STRETCHES ?= $(if $(MINI),3,2.5 3 3.5)
-# The pair law alone across stretches, u_c 0.134Δ above each far field.
-RC_PAIR_STRETCHES ?= $(if $(MINI),,2 2.5 3.5)
+# The paper's failure law at b = 1.5 with the crack path of the freeze runs below (bulk cut-off 1.3 u_c).
+RC_OPT_path := $(RC_THREE_BODY) --crack.path_cutoff_ratio 1.3
+# Left out of the default list for time (each can still be made by name, e.g. RC_LEVERS=soft-all): the
+# softening law with damping and toughening, the weight's variants and three-body-0.05, which repeat the
+# outcome of their neighbours in the table.
+RC_LEVERS ?= $(if $(MINI),paper weight,paper irreversible damped near-failure toughened c1 kick soft weight pair-only \
+             three-body-0.02 three-body-0.1 three-body-0.25 path)
+# The stretch across the crack, with the softening law placed 0.02Δ + L above each far field; the pair law
+# alone across stretches, u_c 0.134Δ above each far field (none by default: RC_STRETCHES='2.5 3 3.5',
+# RC_PAIR_STRETCHES='2 2.5 3.5').
+RC_STRETCHES ?= $(if $(MINI),3,)
+RC_PAIR_STRETCHES ?=
 
 RC_RUNS := $(foreach l,$(RC_LEVERS),$(RC)/lever-$(l).h5) $(foreach s,$(RC_STRETCHES),$(RC)/stretch-$(s).h5) \
            $(foreach s,$(RC_PAIR_STRETCHES),$(RC)/pair-stretch-$(s).h5)
 
 .PHONY: rubber-crack
-rubber-crack: $(RC)/table.md $(RC)/snapshot.png
-	@cat $(RC)/table.md
+rubber-crack: $(RC)/table.md $(RC)/snapshot.png $(RC)/freeze.md $(RC)/crack.png $(RC)/crack-toughened.png
+	@cat $(RC)/table.md $(RC)/freeze.md
 
 $(RC)/strip.h5: | build
 	@mkdir -p $(@D)
@@ -119,3 +128,80 @@ $(RC)/snapshot.png: $(RC)/table.csv
 	@best=$$(tail -n +2 $< | sort -t, -k5 -g | tail -1 | cut -d, -f1); \
 	 echo "snapshot of $$best"; \
 	 $(LAUNCH) $(BIN)/render $(RC)/$$best.h5 --frame -1 --axes -q -o $@
+
+# ---- Energy-neutral failure (law.failure = freeze) with a crack path (crack.path_cutoff_ratio) ----
+# No cut-off function (law.cutoff = none: h ≡ 1, the far field is exactly Mooney-Rivlin at any u_c); a bond
+# fails for good at u_c, freezing the three-body terms that contain it. The step is set by hand: the
+# automatic one (1.8e-6 s) lets the energy drift by 18 % through a crack; 2.5e-7 s keeps it within about 1 %
+# (1.25e-7 s gives the same speed). Runs are named by their settings:
+#   f-b<b>-y<λy>-c<λc>-p<ratio>[-tough][-damp][-h<rows>]
+# b = material.b, λy the stretch across the crack (λx = 1.2), u_c = u_0(λc) + 0.134Δ where u_0(λc) is the
+# longest far-field bond at λy = λc (λc = λy: u_c follows the far field, the strain ahead of the tip fixed;
+# λc = 4: one u_c, 3.65Δ, for every stretch: one material, stretched more or less), the bulk's cut-off ratio ×
+# u_c (the bonds across the crack line keep u_c: a weak plane), toughening of retracting faces (cut-off 5Δ),
+# near-failure Kelvin damping (β = 0.3 m√a/Δ from u_c − 0.1Δ), and the strip's height in rows (RCF_ROWS).
+RCF_LENGTH ?= $(if $(MINI),160,400)
+RCF_ROWS ?= $(if $(MINI),20,80)
+RCF_TMAX ?= $(if $(MINI),8e-4,3.5e-3)
+RCF_COMMON := --law.failure freeze --law.cutoff none --integrator.dt 2.5e-7 --stop.t_max $(RCF_TMAX) \
+              --stop.tip_margin 0.02 --output.frame_interval 2.5e-4 -q
+RCF_tough := --physics.toughening on --toughening.cutoff 5e-3
+RCF_damp = --physics.damping on --damping.kind near_failure --damping.onset $$(awk -v u=$$uc 'BEGIN { print u - 1e-4 }')
+# The steady crack; its speed against the stretch with u_c following the far field, and with one u_c for all
+# stretches, for three values of b; the strip's height; the path's contrast, toughening and damping.
+RCF_STEADY := f-b1.5-y3-c3-p1.3
+RCF_RUNS ?= $(if $(MINI),$(RCF_STEADY) f-b1.5-y3-c3-p1.3-h10 f-b1.5-y3-c3-p1.0 f-b1.5-y3-c3-p1.2-tough-damp, \
+  $(RCF_STEADY) $(foreach y,2 2.5 3.5,f-b1.5-y$(y)-c$(y)-p1.3) f-b1-y3-c3-p1.3 f-b0.5-y3-c3-p1.3 \
+  $(foreach b,1.5 1 0.5,$(foreach y,4 3.5 3 2.5,f-b$(b)-y$(y)-c4-p1.3)) \
+  f-b1.5-y3-c3-p1.3-h40 f-b1.5-y3-c3-p1.3-h160 \
+  $(foreach p,1.0 1.1 1.2,f-b1.5-y3-c3-p$(p)) f-b1.5-y3-c3-p1.3-tough f-b1.5-y3-c3-p1.2-tough f-b1.5-y3-c3-p1.2-damp \
+  f-b1.5-y3-c3-p1.2-tough-damp f-b1.5-y3-c3-p1.1-tough-damp)
+# The heights the runs ask for (h<rows>), and the default.
+RCF_HEIGHTS := $(sort $(RCF_ROWS) $(patsubst h%,%,$(filter h%,$(subst -, ,$(RCF_RUNS)))))
+RCF_MESHES := $(foreach h,$(RCF_HEIGHTS),$(RC)/strip-$(RCF_LENGTH)x$(h).h5)
+
+$(RC)/strip-%.h5: | build
+	@mkdir -p $(@D)
+	$(LAUNCH) $(BIN)/mesh-gen triangular --nodes $* --spacing 1e-3 -q -o $@
+
+# rcf_field,NAME,LETTER: the value of the field LETTER<value> of a run name; rcf_flag,NAME,WORD: WORD if present.
+rcf_field = $(patsubst $(2)%,%,$(filter $(2)%,$(subst -, ,$(1))))
+rcf_flag = $(filter $(2),$(subst -, ,$(1)))
+$(RC)/f-%.h5: $(RCF_MESHES) $(RC_SCENE) | build
+	@echo "rubber-run freeze $*"
+	@uc=$$(awk -v l=$(call rcf_field,$*,c) 'BEGIN { printf "%.6g", 1e-3 * (sqrt(0.36 + 0.75 * l * l) + 0.134) }'); \
+	 $(RUN_ENV) $(LAUNCH) $(BIN)/rubber-run $(THREADS_OPT) --scene $(RC_SCENE) \
+	   $(RC)/strip-$(RCF_LENGTH)x$(or $(call rcf_field,$*,h),$(RCF_ROWS)).h5 $(RCF_COMMON) \
+	   --material.b $(call rcf_field,$*,b) --loading.stretch_y $(call rcf_field,$*,y) --law.cutoff_length $$uc \
+	   --crack.path_cutoff_ratio $(call rcf_field,$*,p) $(if $(call rcf_flag,$*,tough),$(RCF_tough)) \
+	   $(if $(call rcf_flag,$*,damp),$(RCF_damp)) -o $@ 2> $(@:.h5=.log)
+
+$(RC)/frow-%.csv: $(RC)/f-%.h5 scripts/rubber-crack-row.sh
+	@bash scripts/rubber-crack-row.sh $(BIN) $< $* > $@
+
+$(RC)/freeze.csv: $(foreach r,$(RCF_RUNS),$(RC)/frow-$(patsubst f-%,%,$(r)).csv)
+	@{ bash scripts/rubber-crack-row.sh --header; cat $^; } > $@
+
+# Two tables over the same runs: the speeds, then the shape and the wake.
+$(RC)/freeze.md: $(RC)/freeze.csv
+	@{ echo "# rubber-crack: energy-neutral failure with a crack path ($(RCF_LENGTH) × $(RCF_ROWS) nodes unless h says, λx = 1.2, t_max = $(RCF_TMAX) s)"; echo; \
+	   echo "Runs f-b<b>-y<λy>-c<λc>-p<ratio>[-tough][-damp][-h<rows>]: u_c = u_0(λc) + 0.134Δ; speed fitted after the first 50Δ; windows: the slope over each 0.1 ms against it."; echo; \
+	   echo "| run | b | λy | u_c − u_0 (Δ) | path ratio | advance after 50Δ (Δ) | v (m/s) | 0.1 ms windows (%) | c_T | c_L | v/c_T | v/c_L | outcome |"; \
+	   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"; \
+	   tail -n +2 $< | awk -F, '{ printf "| %s | %s | %s | %.3g | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $$1, $$2, $$3, $$6 - $$5, \
+	     $$7 + 0, $$11, $$12, $$13 == "" ? "" : $$13 " … " $$14, $$15, $$16, $$17, $$18, $$28 }'; echo; \
+	   echo "Shape (final frame): the angle to the crack line of the front behind which the sheet lets go, against the Mach angles at the tip's speed (longitudinal and transverse, v sin α = c(n), and asin(c_L,x/v)); lag: tip minus the front's intercept on the crack line; grips: bonds from the clamped rows broken, free nodes past the outer rows."; echo; \
+	   echo "| run | front angle (°) | Mach L (°) | asin(c_L,x/v) (°) | Mach T (°) | lag (Δ) | bulk bonds broken | grip bonds broken (%) | nodes past grips (%) | ΔE/E (%) |"; \
+	   echo "|---|---|---|---|---|---|---|---|---|---|"; \
+	   tail -n +2 $< | awk -F, '{ printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $$1, $$20, $$21, $$22, $$23, $$24, $$25, $$26, $$27, $$19 }'; } > $@
+
+# Bonds coloured by strain around the tip, halfway through the steady run, and the same with toughening and
+# damping: the wedge, its Mach lines and the debris behind it.
+rcf_picture = t=$$(awk -v t=$(RCF_TMAX) 'BEGIN { print t / 2 }'); \
+	tip=$$($(BIN)/observables $< --crack-shape --time $$t -q | awk '$$1 == "tip_x" { print $$2 }'); \
+	$(LAUNCH) $(BIN)/render $< --time $$t --colour strain --beams strain --axes -q --width 800 \
+	  --view $$(awk -v x=$$tip -v h=$(RCF_ROWS) 'BEGIN { printf "%g,%g,%g,%g", x - 0.16 * h / 80, -0.03 * h / 80, x + 0.04 * h / 80, 0.235 * h / 80 }') -o $@
+$(RC)/crack.png: $(RC)/$(RCF_STEADY).h5
+	@$(rcf_picture)
+$(RC)/crack-toughened.png: $(RC)/f-b1.5-y3-c3-p1.2-tough-damp.h5
+	@$(rcf_picture)

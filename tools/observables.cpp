@@ -2,16 +2,52 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <numbers>
 #include <sstream>
 
+#include "analysis/crack_shape.hpp"
+#include "analysis/mooney_rivlin_waves.hpp"
 #include "analysis/observable_table.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
+#include "io/mesh_io.hpp"
+#include "io/run_io.hpp"
 
 using namespace frac;
 namespace po = boost::program_options;
+
+namespace {
+
+void print_crack_shape(const io::Group& root, double time) {
+  const io::RunInfo info = io::read_run_info(root);
+  if (info.model != "rubber") throw UsageError("--crack-shape: needs a rubber-run file");
+  const auto number = [&](const std::string& key) { return std::stod(analysis::run_parameter(root, key)); };
+  const io::BodyFrame frame = io::read_frame(root, std::isnan(time) ? -1 : io::frame_at_time(info, time));
+  const analysis::Stretch stretch{number("loading.stretch_x"), number("loading.stretch_y")};
+  const analysis::CrackShape s = analysis::measure_crack_shape(
+      io::read_node_mesh(root), frame, stretch.x, stretch.y, static_cast<std::size_t>(number("boundary.clamp_rows")));
+  // The tip's speed at the frame (the run's own fit over output.speed_window) and the Mach angles of the
+  // Mooney-Rivlin sheet at that speed, to compare with the front's angle.
+  const analysis::ObservableTable speeds = analysis::read_observables(root, {"crack_tip_speed"});
+  double speed = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t r = 0; r < speeds.time.size(); ++r)
+    if (r == 0 || std::abs(speeds.time[r] - s.time) <= std::abs(speeds.time[r - 1] - s.time)) speed = speeds.columns[0][r];
+  const analysis::MooneyRivlin material{number("material.a"), number("material.b"), 1.0};
+  const double degrees = 180.0 / std::numbers::pi;
+  const auto mach = [&](bool longitudinal) { return degrees * analysis::mach_angle(material, stretch, speed, longitudinal); };
+  std::cout << std::setprecision(6) << "time " << s.time << "\ntip_found " << s.tip_found << "\ntip_reference_x "
+            << s.tip_reference_x << "\ntip_x " << s.tip_x << "\nspeed " << speed << "\nbroken_crossing "
+            << s.broken_crossing << "\nbroken_bulk " << s.broken_bulk << "\nfront_angle " << s.front_angle
+            << "\nfront_angle_upper " << s.front_angle_upper << "\nfront_angle_lower " << s.front_angle_lower
+            << "\nfront_rows " << s.front_rows << "\nfront_rms " << s.front_rms << "\nfront_lag " << s.front_lag
+            << "\nmach_angle_T " << mach(false) << "\nmach_angle_L " << mach(true) << "\ngrip_bonds " << s.grip_bonds
+            << "\ngrip_bonds_broken " << s.grip_bonds_broken << "\nfree_nodes " << s.free_nodes << "\nnodes_past_grips " << s.nodes_past_grips << "\n";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   return cli::run_tool("observables", [&] {
@@ -21,12 +57,17 @@ int main(int argc, char** argv) {
         "provenance, the header, then time and the named columns (default: all scalar observables). With --fit "
         "Y:X, fits Y = intercept + slope·X by least squares over the samples selected by --where and --after and "
         "prints `key value` lines: slope, slope_stderr, intercept, points (the elastic moduli: --fit "
-        "stress:axial_strain gives K; --fit lateral_strain:axial_strain gives −ν).",
+        "stress:axial_strain gives K; --fit lateral_strain:axial_strain gives −ν). With --crack-shape (a rubber-run "
+        "crack run), measures the crack in one frame and prints `key value` lines: the tip, the angle of the front "
+        "behind which the sheet unloads (the wedge), how far it trails the tip, broken bonds, the grips.",
         "  observables run.h5 --columns stress,axial_strain > curve.csv\n"
-        "  observables run.h5 --fit stress:axial_strain --where 'axial_strain>0' --after 2e-3"};
+        "  observables run.h5 --fit stress:axial_strain --where 'axial_strain>0' --after 2e-3\n"
+        "  observables crack.h5 --crack-shape --time 1.5e-3"};
     cli::CommonOptions common;
     std::string input, columns, fit, where, parameter, compare;
     double after = -std::numeric_limits<double>::infinity();
+    double time = std::numeric_limits<double>::quiet_NaN();
+    bool crack_shape = false;
     po::options_description desc("Options");
     desc.add_options()("input", po::value(&input)->required(), "run file, or - for standard input")(
         "columns", po::value(&columns), "comma-separated observable names (default: every scalar one)")(
@@ -35,7 +76,10 @@ int main(int argc, char** argv) {
         "after", po::value(&after), "select samples at time > T (s)")(
         "parameter", po::value(&parameter), "print the value of a resolved parameter of the run (e.g. derived.dt)")(
         "compare", po::value(&compare),
-        "REFERENCE.h5: print the rms and largest distance between the final positions of the two runs (same mesh)");
+        "REFERENCE.h5: print the rms and largest distance between the final positions of the two runs (same mesh)")(
+        "crack-shape", po::bool_switch(&crack_shape),
+        "measure the crack of a rubber-run crack run in one frame (docs/rubber-run.md, \"Crack experiment\")")(
+        "time", po::value(&time), "with --crack-shape: the frame nearest this time, in s (default: the final state)");
     cli::add_common(desc, common, cli::kQuiet | cli::kConfig);
     po::positional_options_description positional;
     positional.add("input", 1);
@@ -51,6 +95,10 @@ int main(int argc, char** argv) {
       const analysis::PositionDifference d = analysis::compare_final_positions(root, reference, input, compare);
       std::cout << std::setprecision(10) << "rms_position_difference " << d.rms << "\nmax_position_difference "
                 << d.max << "\ntime " << d.time << "\nreference_time " << d.reference_time << "\n";
+      return kExitOk;
+    }
+    if (crack_shape) {
+      print_crack_shape(root, time);
       return kExitOk;
     }
     if (!parameter.empty()) {

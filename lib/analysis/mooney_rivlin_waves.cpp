@@ -49,6 +49,21 @@ MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direc
   return out;
 }
 
+double mach_angle(const MooneyRivlin& m, Stretch s, double speed, bool longitudinal) {
+  // speed · sin(alpha) − c(n(alpha)) is −c_y at alpha = 0 and speed − c_x at 90°: bisect.
+  auto excess = [&](double alpha) {
+    const MrWaveSpeeds c = mooney_rivlin_speeds(m, s, std::numbers::pi / 2 - alpha);
+    return speed * std::sin(alpha) - (longitudinal ? c.longitudinal : c.shear);
+  };
+  double lo = 0, hi = std::numbers::pi / 2;
+  if (!(excess(hi) > 0)) return std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (excess(mid) > 0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 MrStress mooney_rivlin_stress(const MooneyRivlin& m, Stretch s) {
   validate(m, s);
   const rubber::mr::Material material{m.a, m.b, m.density};

@@ -42,6 +42,12 @@ struct MrWaveSpeeds {
 };
 MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direction);
 
+// The Mach angle of a source running along x at lab speed `speed` (m/s): the angle alpha in (0, 90°] to x of
+// the straight front it drags behind it, steady in the source's frame when speed · sin(alpha) = c(n), c the
+// mode's lab speed along the front's normal n = (sin alpha, cos alpha). In an isotropic sheet this is
+// asin(c/speed); here c depends on n. Radians; NaN when the source is not faster than the mode along x.
+double mach_angle(const MooneyRivlin& m, Stretch s, double speed, bool longitudinal);
+
 // Stresses of the homogeneously stretched sheet, force per length (N/m):
 //   P_xx = rho a lx [1 + (b/2)(ly^2 - 1)],  P_yy = rho a ly [1 + (b/2)(lx^2 - 1)]  (Piola, per reference length)
 //   sigma_xx = P_xx / ly, sigma_yy = P_yy / lx                                        (Cauchy, per current length)

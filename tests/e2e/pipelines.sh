@@ -83,6 +83,15 @@ case $experiment in
     columns table.csv "$(head -n 1 "$work/rubber-crack/table.csv")"
     markdown table.md
     png snapshot.png
+    # Energy-neutral failure with a crack path: the steady crack of the miniature runs faster than c_L
+    # behind a wedge whose front leans back from the crack line.
+    columns freeze.csv "$(bash "$src/scripts/rubber-crack-row.sh" --header)"
+    markdown freeze.md
+    awk -F, '$1 == "b1.5-y3-c3-p1.3" { found = 1; ok = $18 > 1 && $20 < 80 && $28 == "steady wedge" }
+      END { exit !(found && ok) }' "$work/rubber-crack/freeze.csv" ||
+      fail "freeze.csv: the steady crack is not a supersonic wedge: $(grep '^b1.5-y3-c3-p1.3,' "$work/rubber-crack/freeze.csv")"
+    png crack.png
+    png crack-toughened.png
     ;;
   accuracy-cost)
     columns dem-timestep.csv "series,integrator,start,level,dt_s,omega_dt,steps,wall_s,loop_s,peak_MB,cell_steps_per_s,energy_drift,rms_displacement_error_m,max_displacement_error_m,wave_speed_deviation"
