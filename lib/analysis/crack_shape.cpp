@@ -61,6 +61,7 @@ CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, 
   const double y0 = m.notch_y;
   auto row = [&](std::int64_t node) { return static_cast<std::size_t>(node) / nx; };
 
+  std::vector<std::size_t> grip;  // bonds from the clamped rows to the free rows, counted once the tip is known
   for (std::size_t b = 0; b < m.bonds(); ++b) {
     const auto [i, j] = m.bond[b];
     const bool broken = f.intact[b] == 0;
@@ -80,10 +81,15 @@ CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, 
     }
     if (broken) ++s.broken_bulk;
     const std::size_t ri = row(i), rj = row(j);  // i < j: rj = ri or ri + 1
-    if (ri != rj && (ri + 1 == clamp_rows || rj + clamp_rows == ny)) {
-      ++s.grip_bonds;
-      if (broken) ++s.grip_bonds_broken;
-    }
+    if (ri != rj && (ri + 1 == clamp_rows || rj + clamp_rows == ny)) grip.push_back(b);
+  }
+  for (std::size_t b : grip) {
+    const auto [i, j] = m.bond[b];
+    if (!s.tip_found ||
+        m.position[static_cast<std::size_t>(i)].x() + m.position[static_cast<std::size_t>(j)].x() > 2 * s.tip_reference_x)
+      continue;
+    ++s.grip_bonds;
+    if (f.intact[b] == 0) ++s.grip_bonds_broken;
   }
 
   // A node has let go when it has moved more than a spacing from its place in the pre-stretched sheet: ahead
@@ -125,8 +131,10 @@ CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, 
     s.front_rms = s.front_lag = kNaN;
   }
 
-  // Free nodes beyond the outer rows, which the clamps hold at their pre-stretched height.
-  const double y_bottom = stretch_y * m.position[0].y(), y_top = stretch_y * m.position[(ny - 1) * nx].y();
+  // Free nodes far beyond the outer rows, which the clamps hold at their pre-stretched height.
+  const double reach = 0.5 * static_cast<double>(ny - 2 * clamp_rows) * row_step;
+  const double y_bottom = stretch_y * m.position[0].y() - reach;
+  const double y_top = stretch_y * m.position[(ny - 1) * nx].y() + reach;
   s.free_nodes = (ny - 2 * clamp_rows) * nx;
   for (std::size_t i = clamp_rows * nx; i < (ny - clamp_rows) * nx; ++i) {
     const double y = f.position[2 * i + 1];

@@ -34,10 +34,12 @@ struct CrackShape {
   double front_rms = 0;            // m, rms distance of the rows' fronts from the fitted lines (along x)
   double front_lag = 0;            // m, tip x minus the fitted front's x on the crack line: how far the
                                    // opening trails the tip (≈ 0: a wedge with the tip at its apex)
-  std::size_t grip_bonds = 0;          // bonds from the clamped rows to the free rows next to them
+  std::size_t grip_bonds = 0;          // bonds from the clamped rows to the free rows next to them, behind the tip
   std::size_t grip_bonds_broken = 0;   // of those, broken: the sheet tears off the grips
   std::size_t free_nodes = 0;          // nodes outside the clamped rows
-  std::size_t nodes_past_grips = 0;    // of those, beyond the outer rows (debris flying past the grips)
+  // Of those, beyond the outer rows by more than the unstretched height of the free half strip: debris flying
+  // past the grips (a retracted half folded over its grip reaches no further).
+  std::size_t nodes_past_grips = 0;
 };
 
 // `frame` of a run on `mesh` (rows along x; InputError otherwise); `stretch` the pre-stretch (λx, λy);

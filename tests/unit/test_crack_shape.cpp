@@ -66,7 +66,7 @@ TEST(CrackShape, WedgeOfKnownAngleWithTheTipAtItsApex) {
     EXPECT_LT(std::abs(c.front_lag), 1.5) << angle;
     EXPECT_EQ(c.front_rows, 18u);  // the rows from the line halfway to the grips: 9 on each side
     EXPECT_EQ(c.broken_bulk, 0u);
-    EXPECT_EQ(c.grip_bonds, 2u * (2 * 200 - 1));
+    EXPECT_NEAR(static_cast<double>(c.grip_bonds), 2 * 2 * 120, 4);  // behind the tip: two a node, both grips
     EXPECT_EQ(c.grip_bonds_broken, 0u);
     EXPECT_EQ(c.free_nodes, 36u * 200);
     EXPECT_EQ(c.nodes_past_grips, 0u);
@@ -75,20 +75,22 @@ TEST(CrackShape, WedgeOfKnownAngleWithTheTipAtItsApex) {
 
 TEST(CrackShape, GripsAndDebris) {
   Synthetic s = wedge(120.0, 60.0, 2);
-  // Two free nodes thrown past the top grip, the bonds of one node to the bottom clamp broken.
+  // Two free nodes thrown far past the grips (one only a little: it counts as folded over its grip), the bonds
+  // of a node behind the tip to the bottom clamp broken, and of one ahead of it (not counted).
   s.frame.position[2 * (37 * 200 + 10) + 1] = 200.0;
   s.frame.position[2 * (3 * 200 + 10) + 1] = -50.0;
+  s.frame.position[2 * (4 * 200 + 10) + 1] = -5.0;
   std::size_t cut = 0;
   for (std::size_t b = 0; b < s.mesh.bonds(); ++b)
-    if (s.mesh.bond[b][1] == 2 * 200 + 50 && s.mesh.bond[b][0] < 2 * 200) {
+    if ((s.mesh.bond[b][1] == 2 * 200 + 50 || s.mesh.bond[b][1] == 2 * 200 + 150) && s.mesh.bond[b][0] < 2 * 200) {
       s.frame.intact[b] = 0;
       ++cut;
     }
   const CrackShape c = measure_crack_shape(s.mesh, s.frame, 1.2, 3.0, 2);
   EXPECT_EQ(c.nodes_past_grips, 2u);
-  EXPECT_EQ(cut, 2u);
+  EXPECT_EQ(cut, 4u);
   EXPECT_EQ(c.grip_bonds_broken, 2u);
-  EXPECT_EQ(c.broken_bulk, 2u);
+  EXPECT_EQ(c.broken_bulk, 4u);
 }
 
 TEST(CrackShape, NoCrackAndBadMeshes) {
