@@ -3,51 +3,17 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <numbers>
 #include <sstream>
 
-#include "analysis/crack_shape.hpp"
-#include "analysis/mooney_rivlin_waves.hpp"
+#include "analysis/crack_report.hpp"
 #include "analysis/observable_table.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
-#include "io/mesh_io.hpp"
-#include "io/run_io.hpp"
 
 using namespace frac;
 namespace po = boost::program_options;
-
-namespace {
-
-void print_crack_shape(const io::Group& root, double time) {
-  const io::RunInfo info = io::read_run_info(root);
-  if (info.model != "rubber") throw UsageError("--crack-shape: needs a rubber-run file");
-  const auto number = [&](const std::string& key) { return std::stod(analysis::run_parameter(root, key)); };
-  const io::BodyFrame frame = io::read_frame(root, std::isnan(time) ? -1 : io::frame_at_time(info, time));
-  const analysis::Stretch stretch{number("loading.stretch_x"), number("loading.stretch_y")};
-  const analysis::CrackShape s = analysis::measure_crack_shape(
-      io::read_node_mesh(root), frame, stretch.x, stretch.y, static_cast<std::size_t>(number("boundary.clamp_rows")));
-  // The tip's speed at the frame (the run's own fit over output.speed_window) and the Mach angles of the
-  // Mooney-Rivlin sheet at that speed, to compare with the front's angle.
-  const analysis::ObservableTable speeds = analysis::read_observables(root, {"crack_tip_speed"});
-  double speed = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t r = 0; r < speeds.time.size(); ++r)
-    if (r == 0 || std::abs(speeds.time[r] - s.time) <= std::abs(speeds.time[r - 1] - s.time)) speed = speeds.columns[0][r];
-  const analysis::MooneyRivlin material{number("material.a"), number("material.b"), 1.0};
-  const double degrees = 180.0 / std::numbers::pi;
-  const auto mach = [&](bool longitudinal) { return degrees * analysis::mach_angle(material, stretch, speed, longitudinal); };
-  std::cout << std::setprecision(6) << "time " << s.time << "\ntip_found " << s.tip_found << "\ntip_reference_x "
-            << s.tip_reference_x << "\ntip_x " << s.tip_x << "\nspeed " << speed << "\nbroken_crossing "
-            << s.broken_crossing << "\nbroken_bulk " << s.broken_bulk << "\nfront_angle " << s.front_angle
-            << "\nfront_angle_upper " << s.front_angle_upper << "\nfront_angle_lower " << s.front_angle_lower
-            << "\nfront_rows " << s.front_rows << "\nfront_rms " << s.front_rms << "\nfront_lag " << s.front_lag
-            << "\nmach_angle_T " << mach(false) << "\nmach_angle_L " << mach(true) << "\ngrip_bonds " << s.grip_bonds
-            << "\ngrip_bonds_broken " << s.grip_bonds_broken << "\nfree_nodes " << s.free_nodes << "\nnodes_past_grips " << s.nodes_past_grips << "\n";
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   return cli::run_tool("observables", [&] {
@@ -98,7 +64,7 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
     if (crack_shape) {
-      print_crack_shape(root, time);
+      analysis::write_key_values(analysis::crack_report(root, time), std::cout);
       return kExitOk;
     }
     if (!parameter.empty()) {
