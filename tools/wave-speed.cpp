@@ -13,6 +13,7 @@
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "io/atomic_file.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 #include "io/speeds_io.hpp"
@@ -36,29 +37,6 @@ std::array<double, 2> parse_interval(const std::string& text, const std::string&
   }
   if (!ok) throw UsageError(option + ": expected MIN:MAX (either may be left out), got '" + text + "'");
   return out;
-}
-
-// Text output: standard output, or a file written under a temporary name and renamed into place.
-void write_text(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    std::cout.flush();
-    if (!std::cout) throw RuntimeError("cannot write to standard output");
-    return;
-  }
-  const std::filesystem::path target(path);
-  const auto temp = target.parent_path() / ("." + target.filename().string() + ".tmp-" + make_uuid().substr(0, 8));
-  {
-    std::ofstream out(temp);
-    if (!out) throw UsageError("-o: cannot write '" + path + "' (is the folder there?)");
-    out << text;
-    out.close();
-    if (!out) {
-      std::filesystem::remove(temp);
-      throw RuntimeError(path + ": write failed");
-    }
-  }
-  std::filesystem::rename(temp, target);
 }
 
 int body(int argc, char** argv) {
@@ -245,7 +223,7 @@ int body(int argc, char** argv) {
   }
 
   if (format == "text") {
-    write_text(common.output, io::speeds_text(record));
+    io::write_file_atomically(common.output, io::speeds_text(record));
   } else {
     io::OutputFile out(common.output);
     io::write_header(out.root(), "speeds", run, out.uuid());

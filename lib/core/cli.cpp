@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 
@@ -112,10 +113,19 @@ int run_tool(const std::string& tool, const std::function<int()>& body) {
     if (code == kExitBadInput) std::cerr << "Try '" << tool << " --help'.\n";
     return code;
   };
+  int code = kExitOk;
   try {
-    return body();
-  } catch (const Exit& e) {
-    return e.code;
+    try {
+      code = body();
+    } catch (const Exit& e) {
+      code = e.code;
+    }
+    // A full disk or a closed pipe behind standard output shows only here, in the buffered tail or the
+    // stream's error flag: a tool whose output was lost must not exit 0.
+    std::cout.flush();
+    const bool written = std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good();
+    if (!written) throw RuntimeError(std::string("-: cannot write to standard output (") + std::strerror(errno) + ")");
+    return code;
   } catch (const UsageError& e) {
     return fail(e.what(), kExitBadInput);
   } catch (const InputError& e) {

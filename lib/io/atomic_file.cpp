@@ -1,6 +1,10 @@
 #include "io/atomic_file.hpp"
 
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -48,7 +52,36 @@ void unregister_temp(const std::string& path) {
     if (g_used[k] && path == g_temps[k]) g_used[k] = 0;
 }
 
+// Removes the temporaries of `name` in `dir` that no process holds locked: left by a killed writer.
+void remove_abandoned_temps(const std::filesystem::path& dir, const std::string& name) {
+  const std::string prefix = "." + name + ".tmp-";
+  DIR* d = opendir(dir.c_str());
+  if (!d) return;
+  while (const dirent* e = readdir(d)) {
+    if (std::strncmp(e->d_name, prefix.c_str(), prefix.size()) != 0) continue;
+    const std::string path = (dir / e->d_name).string();
+    const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) continue;
+    struct stat opened {}, named {};
+    // Unlocked and still the file of that name: abandoned.
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0 && fstat(fd, &opened) == 0 && lstat(path.c_str(), &named) == 0 &&
+        opened.st_ino == named.st_ino && opened.st_dev == named.st_dev && S_ISREG(named.st_mode))
+      unlink(path.c_str());
+    close(fd);
+  }
+  closedir(d);
+}
+
 }  // namespace
+
+std::string write_failure(const std::string& path, int error) {
+  if (path == "-") return error != 0 ? std::strerror(error) : "write error";
+  const std::filesystem::path p(path);
+  const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
+  struct statvfs fs {};
+  if (statvfs(dir.c_str(), &fs) == 0 && fs.f_bavail == 0) return "the disk is full";
+  return error != 0 ? std::strerror(error) : "write error";
+}
 
 AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
   if (target_.empty()) throw UsageError("--output: empty file name");
@@ -59,17 +92,20 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
     throw UsageError(target_ + ": folder '" + dir.string() + "' does not exist");
   if (t.filename().empty() || std::filesystem::is_directory(t, ec))
     throw UsageError(target_ + ": is a folder, not a file name");
+  remove_abandoned_temps(dir, t.filename().string());
   std::string name = (dir / ("." + t.filename().string() + ".tmp-XXXXXX")).string();
   std::vector<char> buf(name.begin(), name.end());
   buf.push_back('\0');
-  const int fd = mkstemp(buf.data());
-  if (fd < 0) throw RuntimeError(target_ + ": cannot create a file in '" + dir.string() + "' (" + std::strerror(errno) + ")");
-  close(fd);
+  fd_ = mkostemp(buf.data(), O_CLOEXEC);
+  if (fd_ < 0)
+    throw RuntimeError(target_ + ": cannot create a file in '" + dir.string() + "' (" + write_failure(target_, errno) + ")");
   temp_ = buf.data();
   register_temp(temp_);
+  flock(fd_, LOCK_EX);  // ours: not abandoned (the lock goes with the process)
 }
 
 AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) close(fd_);
   if (committed_) return;
   std::error_code ec;
   std::filesystem::remove(temp_, ec);
@@ -98,9 +134,11 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   AtomicFile file(path);
   {
     std::FILE* f = std::fopen(file.path().c_str(), "wb");
-    if (!f) throw RuntimeError(path + ": cannot write the file (" + std::string(std::strerror(errno)) + ")");
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok) throw RuntimeError(path + ": cannot write the file (disk full or no permission?)");
+    if (!f) throw RuntimeError(path + ": cannot write the file (" + write_failure(path, errno) + ")");
+    bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    int error = ok ? 0 : errno;
+    if (std::fclose(f) != 0 && ok) ok = false, error = errno;
+    if (!ok) throw RuntimeError(path + ": cannot write the file (" + write_failure(path, error) + ")");
   }
   file.commit();
 }

@@ -2,7 +2,10 @@
 // Atomic output, for every file a tool writes: a temporary name in the target's folder
 // (".NAME.tmp-XXXXXX", hidden), renamed onto the target by commit(). Without commit() (an exception,
 // SIGINT/SIGTERM/SIGHUP) the temporary file is removed and the target is left as it was: a crash never
-// leaves a half-written file that Make would take as done. io/output_file builds HDF5 outputs on it.
+// leaves a half-written file that Make would take as done. The writer holds an exclusive lock (flock) on
+// its temporary file while it lives; a process killed outright (SIGKILL, a node failure) leaves its
+// temporary unlocked, and the next writer of the same target removes every unlocked temporary of it, so
+// temporaries never accumulate. io/output_file builds HDF5 outputs on it.
 #include <string>
 
 namespace frac::io {
@@ -22,8 +25,13 @@ class AtomicFile {
 
  private:
   std::string target_, temp_;
+  int fd_ = -1;  // holds the lock
   bool committed_ = false;
 };
+
+// Why a write to `path` may have failed, for messages: "the disk is full" when its file system has no
+// space left, else the system's message for `error` (an errno value).
+std::string write_failure(const std::string& path, int error);
 
 // Writes `text` to `path` atomically; "-" writes it to standard output.
 void write_file_atomically(const std::string& path, const std::string& text);

@@ -1,10 +1,13 @@
 #include "io/fragments_io.hpp"
 
+#include "io/atomic_file.hpp"
+
 #include <cmath>
 #include <span>
 #include <string>
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/series.hpp"
 
 namespace frac::io {
@@ -42,9 +45,9 @@ void write_plain(Group& g, const char* name, std::span<const double> data, const
   Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_obj_track_times(dcpl.get(), 0);
   Hid d(H5Dcreate2(g.id(), name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
-  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset");
+  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset (" + write_failure(g.file(), errno) + ")");
   if (count > 0 && H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
-    throw RuntimeError(g.where(name) + ": cannot write dataset");
+    throw RuntimeError(g.where(name) + ": cannot write dataset (" + write_failure(g.file(), errno) + ")");
   g.set_attr("unit", unit, name);
 }
 

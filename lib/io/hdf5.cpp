@@ -4,10 +4,15 @@
 
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <limits>
+#include <type_traits>
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/chunk_codec.hpp"
+#include "io/hdf5_probe.hpp"
 
 namespace frac::io {
 
@@ -22,8 +27,27 @@ Hid& Hid::operator=(Hid&& o) noexcept {
   return *this;
 }
 
+namespace {
+// Whether `id` belongs to a file open for reading only (not when its file is unknown: half closed).
+bool in_read_only_file(hid_t id) {
+  const hid_t file = H5Iget_file_id(id);
+  if (file < 0) return false;
+  unsigned intent = 0;
+  const bool read_only = H5Fget_intent(file, &intent) >= 0 && !(intent & H5F_ACC_RDWR);
+  H5Idec_ref(file);
+  return read_only;
+}
+}  // namespace
+
 void Hid::reset() {
   if (id_ < 0) return;
+  // An output abandoned by an exception (a failed write: a full disk) is not closed: libhdf5 1.10 may
+  // crash flushing a file whose writes failed. Its temporary file is removed (io/atomic_file) and the
+  // process is ending with the error.
+  if (std::uncaught_exceptions() > 0 && H5Iis_valid(id_) > 0 && !in_read_only_file(id_)) {
+    id_ = H5I_INVALID_HID;
+    return;
+  }
   if (H5Iis_valid(id_) > 0) {
     switch (H5Iget_type(id_)) {
       case H5I_FILE: H5Fclose(id_); break;
@@ -39,7 +63,19 @@ void Hid::reset() {
   id_ = H5I_INVALID_HID;
 }
 
+namespace {
+// libhdf5 closes what is still open from an atexit handler; after a failed write (a full disk) a file
+// that would not close makes that handler crash (H5F__close_cb). Every output is closed explicitly or
+// abandoned (its temporary removed), so the handler has nothing to do: it is not installed. This must
+// run before any other HDF5 call, hence a static initialiser.
+const bool g_no_atexit = [] {
+  H5dont_atexit();
+  return true;
+}();
+}  // namespace
+
 void silence_hdf5_errors() {
+  (void)g_no_atexit;
   static const bool done = [] {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
@@ -87,6 +123,28 @@ Hid transfer_for(hid_t mem_type, hid_t file_type, hsize_t count) {
   const std::size_t element = std::max(H5Tget_size(mem_type), H5Tget_size(file_type));
   H5Pset_buffer(dxpl.get(), std::max<std::size_t>(element * std::max<hsize_t>(count, 1), 64), nullptr, nullptr);
   return dxpl;
+}
+
+// The number of elements of a dataset of shape `dims`, refused (InputError naming `where`) when it cannot
+// be what the file holds: the product overflows, or the values would take more bytes than the dataset's
+// storage can give (contiguous data takes exactly its size; compressed chunks at most deflate's ratio,
+// 1032, of theirs), so a damaged shape never drives an allocation.
+hsize_t checked_extent(hid_t d, hid_t file_type, const std::vector<hsize_t>& dims, std::size_t element_bytes,
+                       const std::string& where) {
+  hsize_t count = 1;
+  for (auto n : dims) {
+    if (n != 0 && count > std::numeric_limits<hsize_t>::max() / n) throw InputError(where + ": damaged dataspace");
+    count *= n;
+  }
+  if (count == 0) return 0;
+  const std::size_t file_bytes = H5Tget_size(file_type);
+  if (file_bytes == 0) throw InputError(where + ": damaged datatype");
+  const hsize_t storage = H5Dget_storage_size(d);
+  const hsize_t limit = std::numeric_limits<hsize_t>::max() / 2048 / std::max(file_bytes, element_bytes);
+  if (count > limit || storage == 0 || count * file_bytes > 1100 * storage + (1u << 16))
+    throw InputError(where + ": " + std::to_string(count) + " values do not fit the " + std::to_string(storage) +
+                     " bytes the file holds for them (damaged file)");
+  return count;
 }
 
 }  // namespace
@@ -166,7 +224,7 @@ void Group::write_raw(std::string_view name, hid_t mem_type, hid_t file_type, co
     H5Pset_deflate(dcpl.get(), 1);
   }
   Hid d(H5Dcreate2(id(), std::string(name).c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT));
-  if (d.get() < 0) throw RuntimeError(where(name) + ": cannot create dataset");
+  if (d.get() < 0) throw RuntimeError(where(name) + ": cannot create dataset (" + write_failure(file_, errno) + ")");
   if (count > 0 && chunk_rows > 0 && encodes_chunks(mem_type, file_type)) {
     // Compressed: chunk by chunk, encoded here (io/chunk_codec: ~3 times as fast as HDF5's deflate filter).
     const std::size_t element = H5Tget_size(file_type), row_bytes = element * row;
@@ -177,11 +235,11 @@ void Group::write_raw(std::string_view name, hid_t mem_type, hid_t file_type, co
       offset[0] = first;
       if (write_encoded_chunk(d.get(), offset, {bytes + first * row_bytes, rows * row_bytes}, element,
                               chunk_rows * row_bytes) < 0)
-        throw RuntimeError(where(name) + ": cannot write dataset");
+        throw RuntimeError(where(name) + ": cannot write dataset (" + write_failure(file_, errno) + ")");
     }
   } else if (count > 0 &&
              H5Dwrite(d.get(), mem_type, H5S_ALL, H5S_ALL, transfer_for(mem_type, file_type, count).get(), data) < 0) {
-    throw RuntimeError(where(name) + ": cannot write dataset");
+    throw RuntimeError(where(name) + ": cannot write dataset (" + write_failure(file_, errno) + ")");
   }
   if (!unit.empty()) set_attr("unit", unit, name);
 }
@@ -215,16 +273,18 @@ std::vector<T> Group::read(std::string_view name, std::vector<hsize_t>* dims_out
   Hid ftype(H5Dget_type(d.get()));
   const H5T_class_t cls = H5Tget_class(ftype.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where(name) + ": not a numeric dataset");
+  if (!std::is_floating_point_v<T> && cls != H5T_INTEGER)
+    throw InputError(where(name) + ": holds floating-point values where integers (indices, counts, flags) belong");
   Hid space(H5Dget_space(d.get()));
   const int r = H5Sget_simple_extent_ndims(space.get());
+  if (r < 0 || r > H5S_MAX_RANK) throw InputError(where(name) + ": damaged dataspace");
   std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(r, 0)));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   if (rank > 0 && r != rank)
     throw InputError(where(name) + ": expected " + std::to_string(rank) + " dimensions, found " + std::to_string(r));
   if (columns > 0 && (dims.empty() || dims.back() != columns))
     throw InputError(where(name) + ": expected " + std::to_string(columns) + " columns");
-  hsize_t count = 1;
-  for (auto n : dims) count *= n;
+  const hsize_t count = checked_extent(d.get(), ftype.get(), dims, sizeof(T), where(name));
   std::vector<T> out(count);
   if (count > 0 && H5Dread(d.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw InputError(where(name) + ": cannot read dataset (corrupt, or values out of range)");
@@ -267,7 +327,11 @@ std::vector<std::string> Group::read_strings(std::string_view name) const {
   if (d.get() < 0) throw InputError(where(name) + ": not a dataset");
   Hid ftype(H5Dget_type(d.get()));
   Hid space(H5Dget_space(d.get()));
-  const auto count = static_cast<hsize_t>(H5Sget_simple_extent_npoints(space.get()));
+  const int r = H5Sget_simple_extent_ndims(space.get());
+  if (r < 0 || r > H5S_MAX_RANK) throw InputError(where(name) + ": damaged dataspace");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(r));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  const hsize_t count = checked_extent(d.get(), ftype.get(), dims, sizeof(char*), where(name));
   return read_string_values(
       ftype.get(), count,
       [&](hid_t mt, void* buf) {
@@ -275,6 +339,20 @@ std::vector<std::string> Group::read_strings(std::string_view name) const {
       },
       where(name));
 }
+
+namespace {
+// The elements of an attribute, refused when its storage cannot hold them (each takes at least one
+// byte; a fixed-size element, its size): a damaged size never drives an allocation.
+std::size_t attribute_points(const Hid& a, const Hid& ftype, const std::string& what) {
+  Hid space(H5Aget_space(a.get()));
+  const hssize_t points = H5Sget_simple_extent_npoints(space.get());
+  const hsize_t storage = H5Aget_storage_size(a.get());
+  const bool variable = H5Tis_variable_str(ftype.get()) > 0;
+  const std::size_t element = variable ? 1 : std::max<std::size_t>(H5Tget_size(ftype.get()), 1);
+  if (points < 0 || static_cast<hsize_t>(points) > storage / element) throw InputError(what + ": damaged attribute");
+  return static_cast<std::size_t>(points);
+}
+}  // namespace
 
 Hid Group::open_object(std::string_view object) const {
   if (object != "." && !has(object)) throw InputError(where(object) + ": no such object");
@@ -291,7 +369,7 @@ void Group::write_attr_raw(std::string_view name, std::string_view object, hid_t
   Hid space = simple_space(dims);
   Hid a(H5Acreate2(o.get(), n.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT));
   if (a.get() < 0 || H5Awrite(a.get(), type, data) < 0)
-    throw RuntimeError(where(object) + ": cannot write attribute '" + n + "'");
+    throw RuntimeError(where(object) + ": cannot write attribute '" + n + "' (" + write_failure(file_, errno) + ")");
 }
 
 void Group::set_attr(std::string_view name, std::string_view value, std::string_view object) {
@@ -335,8 +413,7 @@ Hid Group::open_attr(std::string_view name, std::string_view object) const {
 std::string Group::attr_string(std::string_view name, std::string_view object) const {
   Hid a = open_attr(name, object);
   Hid ftype(H5Aget_type(a.get()));
-  Hid space(H5Aget_space(a.get()));
-  const auto count = static_cast<hsize_t>(H5Sget_simple_extent_npoints(space.get()));
+  const hsize_t count = attribute_points(a, ftype, where(object) + " attribute '" + std::string(name) + "'");
   auto values = read_string_values(
       ftype.get(), count, [&](hid_t mt, void* buf) { return H5Aread(a.get(), mt, buf); },
       where(object) + " attribute '" + std::string(name) + "'");
@@ -349,8 +426,7 @@ std::vector<T> read_numeric_attr(const Hid& a, const std::string& what) {
   Hid ftype(H5Aget_type(a.get()));
   const H5T_class_t cls = H5Tget_class(ftype.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(what + ": not numeric");
-  Hid space(H5Aget_space(a.get()));
-  const auto count = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.get()));
+  const std::size_t count = attribute_points(a, ftype, what);
   std::vector<T> out(count);
   if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0) throw InputError(what + ": cannot read");
   return out;
@@ -396,6 +472,7 @@ Group open_input(const std::string& path) {
     if (image->empty()) throw InputError("-: standard input is empty (expected an HDF5 file)");
     if (image->size() < sizeof kHdf5Signature || std::memcmp(image->data(), kHdf5Signature, sizeof kHdf5Signature) != 0)
       throw InputError("-: standard input is not an HDF5 file");
+    probe_hdf5_file("-", image.get());
     // Open the bytes in place: no copy; the buffer lives as long as any group of this file.
     const hid_t fid = H5LTopen_file_image(image->data(), image->size(),
                                           H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
@@ -407,6 +484,7 @@ Group open_input(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
+  probe_hdf5_file(path, nullptr);
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path + ": not an HDF5 file");
   Hid file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (file.get() < 0) throw InputError(path + ": cannot open (damaged HDF5 file, or no permission)");

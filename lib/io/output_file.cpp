@@ -19,6 +19,9 @@ Hid file_access(bool in_memory) {
   Hid fapl(H5Pcreate(H5P_FILE_ACCESS));
   // Strong close: closing the file closes every object still open in it, so commit() can rename.
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
+  // io/atomic_file locks the temporary file itself (its lock marks a live writer); libhdf5's own lock
+  // on the same file would conflict with it.
+  H5Pset_file_locking(fapl.get(), false, true);
   if (in_memory) H5Pset_fapl_core(fapl.get(), 16u << 20, 0);
   return fapl;
 }
@@ -38,7 +41,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)), uuid_(make_uu
     atomic_ = std::make_unique<AtomicFile>(path_);
     Hid fapl = file_access(false);
     file_ = Hid(H5Fcreate(atomic_->path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
-    if (file_.get() < 0) throw RuntimeError(path_ + ": cannot create file (permission or disk space?)");
+    if (file_.get() < 0) throw RuntimeError(path_ + ": cannot create the file (" + write_failure(path_, errno) + ")");
   }
   root_.emplace(Hid(H5Gopen2(file_.get(), "/", H5P_DEFAULT)), path_, "/");
 }
@@ -64,7 +67,8 @@ void OutputFile::commit() {
       throw RuntimeError("-: cannot write to standard output (" + std::string(std::strerror(errno)) + ")");
   } else {
     root_.reset();
-    if (H5Fclose(file_.release()) < 0) throw RuntimeError(path_ + ": cannot finish writing the file");
+    if (H5Fclose(file_.release()) < 0)
+      throw RuntimeError(path_ + ": cannot finish writing the file (" + write_failure(path_, errno) + ")");
     atomic_->commit();
   }
   committed_ = true;

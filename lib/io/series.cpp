@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 
 namespace frac::io {
 namespace {
@@ -33,7 +34,7 @@ Hid create_extendible(const Group& g, const char* name, hid_t file_type, const s
     H5Pset_deflate(dcpl.get(), 1);
   }
   Hid d(H5Dcreate2(g.id(), name, file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
-  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset");
+  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset (" + write_failure(g.file(), errno) + ")");
   return d;
 }
 
@@ -46,13 +47,13 @@ void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type,
     start.push_back(0);
     count.push_back(fd);
   }
-  if (H5Dset_extent(d.get(), dims.data()) < 0) throw RuntimeError(g.where(name) + ": cannot extend dataset");
+  if (H5Dset_extent(d.get(), dims.data()) < 0) throw RuntimeError(g.where(name) + ": cannot extend dataset (" + write_failure(g.file(), errno) + ")");
   Hid fspace(H5Dget_space(d.get()));
   H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
   Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
   if (H5Dwrite(d.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, data) < 0)
     throw RuntimeError(g.where(name) + ": cannot write frames " + std::to_string(row) + " to " +
-                       std::to_string(row + rows - 1));
+                       std::to_string(row + rows - 1) + " (" + write_failure(g.file(), errno) + ")");
 }
 
 }  // namespace
@@ -119,12 +120,12 @@ void SeriesWriter::write_values(std::size_t first, const void* values, std::size
     offset.push_back(0);
   }
   if (H5Dset_extent(value_.get(), dims.data()) < 0)
-    throw RuntimeError(group_.where("value") + ": cannot extend dataset");
+    throw RuntimeError(group_.where("value") + ": cannot extend dataset (" + write_failure(group_.file(), errno) + ")");
   const std::size_t row_bytes = frame_size_ * value_bytes_;  // (a chunk not yet full is encoded with zeros)
   if (write_encoded_chunk(value_.get(), offset, {static_cast<const unsigned char*>(values), rows * row_bytes},
                           value_bytes_, rows_per_chunk_ * row_bytes) < 0)
     throw RuntimeError(group_.where("value") + ": cannot write frames " + std::to_string(first) + " to " +
-                       std::to_string(first + rows - 1));
+                       std::to_string(first + rows - 1) + " (" + write_failure(group_.file(), errno) + ")");
 }
 
 void SeriesWriter::flush() {

@@ -1,0 +1,244 @@
+#include "io/hdf5_probe.hpp"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <poll.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/hdf5.hpp"
+
+namespace frac::io {
+namespace {
+
+// The child stops with "stalled" when it reports nothing for this long; a healthy walk reports every
+// object, attribute and 4096 chunks.
+constexpr int kStallMilliseconds = 5000;
+// Limits of the walk: objects and chunks visited, bytes of one attribute or string dataset.
+constexpr long kMaxObjects = 10'000'000;
+constexpr hsize_t kMaxChunks = 100'000'000;
+constexpr hsize_t kMaxReadBytes = hsize_t{1} << 30;
+// Memory the child may add to what it inherits.
+constexpr rlim_t kChildMemory = rlim_t{1} << 30;
+
+// ---- the child ----
+
+int g_report = -1;  // the pipe to the parent
+
+void say(const std::string& line) {
+  std::string s = line + "\n";
+  for (const char* p = s.data(); !s.empty();) {
+    const ssize_t n = write(g_report, p, s.size());
+    if (n <= 0) return;
+    p += n;
+    s.erase(0, static_cast<std::size_t>(n));
+  }
+}
+
+[[noreturn]] void damaged(const std::string& where, const std::string& why) {
+  say("!" + where + "\t" + why);
+  _exit(3);
+}
+
+// Reads `count` elements through `read` into memory of the native type of `ftype`, then frees what
+// variable-length data the read allocated (described by `mem_space`).
+template <class Read>
+void read_native(hid_t ftype, hid_t mem_space, hssize_t count, const std::string& where, Read&& read) {
+  Hid mtype(H5Tget_native_type(ftype, H5T_DIR_ASCEND));
+  if (mtype.get() < 0) damaged(where, "unreadable datatype");
+  const std::size_t size = H5Tget_size(mtype.get());
+  if (count < 0 || size == 0) damaged(where, "unreadable datatype or dataspace");
+  if (static_cast<hsize_t>(count) > kMaxReadBytes / size) damaged(where, "implausibly large");
+  std::vector<unsigned char> buf(static_cast<std::size_t>(count) * size + 1, 0);
+  if (count > 0 && read(mtype.get(), buf.data()) < 0) damaged(where, "cannot be read");
+  if (count > 0 && H5Tdetect_class(mtype.get(), H5T_VLEN) + H5Tis_variable_str(mtype.get()) > 0)
+    H5Dvlen_reclaim(mtype.get(), mem_space, H5P_DEFAULT, buf.data());
+}
+
+struct Walk {
+  long objects = 0;
+  std::string path;  // of the object being walked
+};
+
+herr_t visit_attribute(hid_t object, const char* name, const H5A_info_t*, void* data) {
+  const auto& walk = *static_cast<const Walk*>(data);
+  const std::string where = walk.path + " attribute '" + name + "'";
+  say("@" + where);
+  Hid a(H5Aopen(object, name, H5P_DEFAULT));
+  if (a.get() < 0) damaged(where, "cannot be opened");
+  Hid type(H5Aget_type(a.get())), space(H5Aget_space(a.get()));
+  if (type.get() < 0 || space.get() < 0) damaged(where, "unreadable datatype or dataspace");
+  read_native(type.get(), space.get(), H5Sget_simple_extent_npoints(space.get()), where,
+              [&](hid_t mtype, void* buf) { return H5Aread(a.get(), mtype, buf); });
+  return 0;
+}
+
+void walk_dataset(hid_t d, const std::string& where) {
+  Hid type(H5Dget_type(d)), space(H5Dget_space(d)), dcpl(H5Dget_create_plist(d));
+  if (type.get() < 0 || space.get() < 0 || dcpl.get() < 0) damaged(where, "unreadable datatype, dataspace or layout");
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0 || rank > H5S_MAX_RANK) damaged(where, "unreadable dataspace");
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) damaged(where, "unreadable dataspace");
+  const int filters = H5Pget_nfilters(dcpl.get());
+  for (int k = 0; k < filters; ++k) {
+    unsigned flags = 0, config = 0;
+    std::size_t values = 8;
+    unsigned cd[8];
+    char filter_name[64];
+    if (H5Pget_filter2(dcpl.get(), static_cast<unsigned>(k), &flags, &values, cd, sizeof filter_name, filter_name,
+                       &config) < 0)
+      damaged(where, "unreadable filter pipeline");
+  }
+  if (H5Pget_layout(dcpl.get()) == H5D_CHUNKED) {
+    hsize_t chunks = 0;
+    if (H5Dget_num_chunks(d, space.get(), &chunks) < 0) damaged(where, "unreadable chunk index");
+    if (chunks > kMaxChunks) damaged(where, "implausible chunk count");
+    std::vector<hsize_t> offset(static_cast<std::size_t>(rank) + 1);
+    for (hsize_t c = 0; c < chunks; ++c) {
+      unsigned mask = 0;
+      haddr_t address = 0;
+      hsize_t bytes = 0;
+      if (H5Dget_chunk_info(d, space.get(), c, offset.data(), &mask, &address, &bytes) < 0)
+        damaged(where, "unreadable chunk index");
+      if (c % 4096 == 4095) say(".");
+    }
+  }
+  if (count == 0) return;
+  if (H5Tget_class(type.get()) == H5T_STRING) {  // strings (provenance, names): small, read whole
+    read_native(type.get(), space.get(), count, where,
+                [&](hid_t mtype, void* buf) { return H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf); });
+    return;
+  }
+  // One element, through the chunk or block that holds it and the type conversion a reader uses.
+  std::vector<hsize_t> start(static_cast<std::size_t>(std::max(rank, 1)), 0), one(start.size(), 1);
+  if (rank > 0 && H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, one.data(), nullptr) < 0)
+    damaged(where, "unreadable dataspace");
+  const hsize_t single = 1;
+  Hid memory(H5Screate_simple(1, &single, nullptr));
+  read_native(type.get(), memory.get(), 1, where,
+              [&](hid_t mtype, void* buf) { return H5Dread(d, mtype, memory.get(), space.get(), H5P_DEFAULT, buf); });
+}
+
+herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void* data) {
+  auto& walk = *static_cast<Walk*>(data);
+  if (++walk.objects > kMaxObjects) damaged(walk.path, "implausibly many objects");
+  walk.path = std::strcmp(name, ".") == 0 ? "/" : "/" + std::string(name);
+  say("@" + walk.path);
+  Hid o(H5Oopen(root, name, H5P_DEFAULT));
+  if (o.get() < 0) damaged(walk.path, "cannot be opened");
+  hsize_t index = 0;
+  if (H5Aiterate2(o.get(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, visit_attribute, &walk) < 0)
+    damaged(walk.path, "unreadable attributes");
+  if (info->type == H5O_TYPE_DATASET) walk_dataset(o.get(), walk.path);
+  return 0;
+}
+
+[[noreturn]] void child(const std::string& name, const std::vector<char>* image) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, SIG_DFL);  // not the parent's temp cleanup
+#if !defined(__SANITIZE_ADDRESS__)
+  // The address space the parent left us, plus a budget: a corrupt size fails to allocate instead of
+  // taking the machine's memory.
+  if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+    unsigned long pages = 0;
+    if (std::fscanf(f, "%lu", &pages) == 1) {
+      const rlim_t limit = static_cast<rlim_t>(pages) * static_cast<rlim_t>(sysconf(_SC_PAGESIZE)) + kChildMemory;
+      const rlimit r{limit, limit};
+      setrlimit(RLIMIT_AS, &r);
+    }
+    std::fclose(f);
+  }
+#endif
+  silence_hdf5_errors();
+  hid_t file;
+  if (image) {
+    file = H5LTopen_file_image(const_cast<char*>(image->data()), image->size(),
+                               H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
+  } else {
+    if (H5Fis_hdf5(name.c_str()) <= 0) damaged("", "not an HDF5 file");
+    file = H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  }
+  if (file < 0) damaged("", "cannot be opened (damaged HDF5 file, or no permission)");
+  Walk walk;
+  walk.path = "/";
+  if (H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_NATIVE, visit_object, &walk, H5O_INFO_BASIC) < 0)
+    damaged(walk.path, "damaged object header or link table");
+  say("ok");
+  _exit(0);
+}
+
+// ---- the parent ----
+
+std::string describe(const std::string& name, const std::string& where, const std::string& why) {
+  return name + (where.empty() ? "" : ":" + where) + ": damaged HDF5 file (" + why + ")";
+}
+
+}  // namespace
+
+void probe_hdf5_file(const std::string& name, const std::vector<char>* image) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) throw RuntimeError(name + ": cannot check the file (" + std::strerror(errno) + ")");
+  std::fflush(nullptr);  // nothing buffered is written twice
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    throw RuntimeError(name + ": cannot check the file (" + std::strerror(errno) + ")");
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    g_report = fds[1];
+    try {
+      child(name, image);
+    } catch (...) {
+      _exit(4);
+    }
+  }
+  close(fds[1]);
+  std::string received, last_object, verdict;
+  bool stalled = false;
+  for (;;) {
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = poll(&p, 1, kStallMilliseconds);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) {
+      stalled = true;
+      break;
+    }
+    char buf[4096];
+    const ssize_t n = read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    received.append(buf, static_cast<std::size_t>(n));
+    for (std::size_t eol; (eol = received.find('\n')) != std::string::npos; received.erase(0, eol + 1)) {
+      const std::string line = received.substr(0, eol);
+      if (line.starts_with("@")) last_object = line.substr(1);
+      else if (line.starts_with("!") || line == "ok") verdict = line;
+    }
+  }
+  close(fds[0]);
+  if (stalled) kill(pid, SIGKILL);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  if (stalled) throw InputError(describe(name, last_object, "libhdf5 makes no progress reading it"));
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && verdict == "ok") return;
+  if (verdict.starts_with("!")) {
+    const auto tab = verdict.find('\t');
+    const std::string where = verdict.substr(1, tab - 1), why = verdict.substr(tab + 1);
+    if (why == "not an HDF5 file") throw InputError(name + ": not an HDF5 file");
+    throw InputError(describe(name, where, why));
+  }
+  if (WIFSIGNALED(status))
+    throw InputError(describe(name, last_object, std::string("libhdf5 fails reading it: ") + strsignal(WTERMSIG(status))));
+  throw InputError(describe(name, last_object, "libhdf5 cannot read it"));
+}
+
+}  // namespace frac::io
