@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Fuzzes every reading tool: makes small valid files of every kind (a cell mesh, a node mesh, a DEM run, a
+# rubber run, a wave run, a fragments file), then runs fuzz_readers on MUTANTS mutants of each through
+# every tool that reads that kind (and through standard input). Fails on any signal, hang or exit code
+# other than 0, 1 and 2; the failing mutants are kept in WORK/failures.
+# Usage: fuzz.sh SOURCE_DIR BIN_DIR DRIVER WORK_DIR MUTANTS [SEED [TIMEOUT_S [MEMORY_MB]]]
+set -euo pipefail
+src=$1 bin=$2 driver=$3 work=$4 mutants=$5 seed=${6:-1} timeout=${7:-20} memory=${8:-4096}
+scenes=$src/data/scenes
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+work=$(pwd)
+
+"$bin/mesh-gen" voronoi --shape disc --diameter 0.06 --cells 60 --seed 3 -q -o mesh.h5
+"$bin/mesh-gen" triangular --nodes 12x6 --spacing 1e-3 -q -o strip.h5
+"$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --stop.t_max 2e-5 --output.frame_interval 5e-6 -q -o run.h5
+"$bin/rubber-run" --scene "$scenes/stretch.ini" strip.h5 --stop.t_max 1e-4 --output.frame_interval 3e-5 -q -o rubber.h5
+"$bin/mesh-gen" triangular --nodes 100x4 --spacing 1e-3 -q |
+  "$bin/rubber-run" --scene "$scenes/wave.ini" - --stop.t_max 5e-4 --output.frame_interval 2e-5 -q -o wave.h5
+# Long enough for the disc to break into dozens of fragments (powerlaw-fit needs 10 values or more).
+"$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --stop.t_max 1e-4 --output.frame_interval 1e-4 -q -o broken.h5
+"$bin/fragment-count" broken.h5 -q -o fragments.h5
+
+short_dem=(--stop.t_max 2e-6 -q -o out.h5)
+{
+  echo "$work/mesh.h5 $bin/mesh-gen check {} -q"
+  echo "$work/mesh.h5 $bin/mesh-gen check - -q <{}"
+  echo "$work/mesh.h5 $bin/dem-run --scene $scenes/explosion.ini {} ${short_dem[*]}"
+  echo "$work/mesh.h5 $bin/render {} -q -o out.png"
+  echo "$work/mesh.h5 $bin/h5-xdmf {} -q -o out.xmf"
+  echo "$work/strip.h5 $bin/mesh-gen check {} -q"
+  echo "$work/strip.h5 $bin/rubber-run --scene $scenes/stretch.ini {} --stop.t_max 2e-5 -q -o out.h5"
+  echo "$work/strip.h5 $bin/render {} -q -o out.svg"
+  echo "$work/run.h5 $bin/observables {} -q"
+  echo "$work/run.h5 $bin/observables - --compare $work/run.h5 -q <{}"
+  echo "$work/run.h5 $bin/fragment-count {} -q -o out.h5"
+  echo "$work/run.h5 $bin/render {} -q -o out.png"
+  echo "$work/run.h5 $bin/h5-xdmf {} -q -o out.xmf"
+  echo "$work/run.h5 $bin/wave-speed {} --format text -q"
+  echo "$work/run.h5 $bin/mesh-gen check {} -q"
+  echo "$work/rubber.h5 $bin/observables {} -q"
+  echo "$work/rubber.h5 $bin/observables {} --crack-shape -q"
+  echo "$work/rubber.h5 $bin/render {} -q -o out.png"
+  echo "$work/rubber.h5 $bin/h5-xdmf {} -q -o out.xmf"
+  echo "$work/wave.h5 $bin/wave-speed {} --format text -q"
+  echo "$work/wave.h5 $bin/observables {} -q"
+  echo "$work/fragments.h5 $bin/powerlaw-fit {} --bootstrap 0 --gof-samples 0 --format text -q"
+  echo "$work/fragments.h5 $bin/powerlaw-fit - --bootstrap 0 --gof-samples 0 -q -o out.h5 <{}"
+  echo "$work/fragments.h5 $bin/render $work/broken.h5 --fragments {} -q -o out.png"
+  echo "$work/fragments.h5 $bin/h5-xdmf $work/broken.h5 --fragments {} -q -o out.xmf"
+} > spec.txt
+
+"$driver" --spec spec.txt --mutants "$mutants" --seed "$seed" --timeout "$timeout" --memory "$memory" \
+  --jobs "${FUZZ_JOBS:-2}" --work "$work/runs"
