@@ -157,8 +157,13 @@ herr_t write_encoded_chunk(hid_t d, const std::vector<hsize_t>& offset, std::spa
   return H5Dwrite_chunk(d, H5P_DEFAULT, 0, offset.data(), encoded.size(), encoded.data());
 }
 
-Group::Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive)
-    : keep_alive_(std::move(keep_alive)), hid_(std::move(id)), file_(std::move(file)), path_(std::move(path)) {}
+Group::Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive,
+             std::shared_ptr<const WalkedStrings> walked)
+    : keep_alive_(std::move(keep_alive)),
+      walked_(std::move(walked)),
+      hid_(std::move(id)),
+      file_(std::move(file)),
+      path_(std::move(path)) {}
 
 std::string Group::where(std::string_view name) const { return file_ + ":" + join(path_, name); }
 
@@ -188,7 +193,7 @@ Group Group::group(std::string_view name) const {
   if (!has(name)) throw InputError(where(name) + ": no such group");
   Hid g(H5Gopen2(id(), std::string(name).c_str(), H5P_DEFAULT));
   if (g.get() < 0) throw InputError(where(name) + ": not a group");
-  return Group(std::move(g), file_, join(path_, name), keep_alive_);
+  return Group(std::move(g), file_, join(path_, name), keep_alive_, walked_);
 }
 
 Group Group::create_group(std::string_view name) {
@@ -199,7 +204,7 @@ Group Group::create_group(std::string_view name) {
   H5Pset_obj_track_times(gcpl.get(), 0);
   Hid g(H5Gcreate2(id(), std::string(name).c_str(), lcpl.get(), gcpl.get(), H5P_DEFAULT));
   if (g.get() < 0) throw RuntimeError(where(name) + ": cannot create group");
-  return Group(std::move(g), file_, join(path_, name), keep_alive_);
+  return Group(std::move(g), file_, join(path_, name), keep_alive_, walked_);
 }
 
 void Group::write_raw(std::string_view name, hid_t mem_type, hid_t file_type, const void* data,
@@ -332,6 +337,7 @@ std::vector<std::string> Group::read_strings(std::string_view name) const {
   std::vector<hsize_t> dims(static_cast<std::size_t>(r));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   const hsize_t count = checked_extent(d.get(), ftype.get(), dims, sizeof(char*), where(name));
+  if (const auto* walked = walked_strings(d.get(), ftype.get(), "", where(name))) return *walked;
   return read_string_values(
       ftype.get(), count,
       [&](hid_t mt, void* buf) {
@@ -410,10 +416,23 @@ Hid Group::open_attr(std::string_view name, std::string_view object) const {
   return a;
 }
 
+const std::vector<std::string>* Group::walked_strings(hid_t o, hid_t ftype, const std::string& attr,
+                                                     const std::string& what) const {
+  if (!walked_ || H5Tget_class(ftype) != H5T_STRING || H5Tis_variable_str(ftype) <= 0) return nullptr;
+  H5O_info_t info;
+  if (H5Oget_info2(o, &info, H5O_INFO_BASIC) < 0) throw InputError(what + ": damaged object header");
+  const auto it = walked_->find({info.addr, attr});
+  if (it == walked_->end()) throw InputError(what + ": strings the file's walk did not find (damaged file)");
+  return &it->second;
+}
+
 std::string Group::attr_string(std::string_view name, std::string_view object) const {
   Hid a = open_attr(name, object);
   Hid ftype(H5Aget_type(a.get()));
   const hsize_t count = attribute_points(a, ftype, where(object) + " attribute '" + std::string(name) + "'");
+  if (const auto* walked = walked_strings(open_object(object).get(), ftype.get(), std::string(name),
+                                          where(object) + " attribute '" + std::string(name) + "'"))
+    return walked->empty() ? std::string() : walked->front();
   auto values = read_string_values(
       ftype.get(), count, [&](hid_t mt, void* buf) { return H5Aread(a.get(), mt, buf); },
       where(object) + " attribute '" + std::string(name) + "'");
@@ -472,24 +491,24 @@ Group open_input(const std::string& path) {
     if (image->empty()) throw InputError("-: standard input is empty (expected an HDF5 file)");
     if (image->size() < sizeof kHdf5Signature || std::memcmp(image->data(), kHdf5Signature, sizeof kHdf5Signature) != 0)
       throw InputError("-: standard input is not an HDF5 file");
-    probe_hdf5_file("-", image.get());
+    auto strings = probe_hdf5_file("-", image.get());
     // Open the bytes in place: no copy; the buffer lives as long as any group of this file.
     const hid_t fid = H5LTopen_file_image(image->data(), image->size(),
                                           H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
     if (fid < 0) throw InputError("-: standard input holds a damaged HDF5 file");
     Hid file(fid);
     Hid root(H5Gopen2(fid, "/", H5P_DEFAULT));
-    return Group(std::move(root), "-", "/", image);
+    return Group(std::move(root), "-", "/", image, std::move(strings));
   }
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
-  probe_hdf5_file(path, nullptr);
+  auto strings = probe_hdf5_file(path, nullptr);
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path + ": not an HDF5 file");
   Hid file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (file.get() < 0) throw InputError(path + ": cannot open (damaged HDF5 file, or no permission)");
   Hid root(H5Gopen2(file.get(), "/", H5P_DEFAULT));
-  return Group(std::move(root), path, "/");
+  return Group(std::move(root), path, "/", {}, std::move(strings));
 }
 
 }  // namespace frac::io

@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -49,10 +50,17 @@ bool encodes_chunks(hid_t mem_type, hid_t file_type);
 herr_t write_encoded_chunk(hid_t d, const std::vector<hsize_t>& offset, std::span<const unsigned char> data,
                            std::size_t element_size, std::size_t chunk_bytes);
 
+// The variable-length strings of an input file as the validating walk (io/hdf5_probe) read them, by
+// object address and attribute name ("" for a string dataset's values). A reader of an input takes
+// them from here and never lets libhdf5 follow a string's heap reference itself: an out-of-bounds
+// reference that happened not to crash the walk could still crash the reader.
+using WalkedStrings = std::map<std::pair<haddr_t, std::string>, std::vector<std::string>>;
+
 // A group (or the root group of a file), with the file's name for messages.
 class Group {
  public:
-  Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive = {});
+  Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive = {},
+        std::shared_ptr<const WalkedStrings> walked = {});
 
   hid_t id() const { return hid_.get(); }
   const std::string& file() const { return file_; }
@@ -99,12 +107,17 @@ class Group {
 
  private:
   std::shared_ptr<void> keep_alive_;  // declared first: outlives hid_ (an in-memory file image)
+  std::shared_ptr<const WalkedStrings> walked_;  // inputs only
   Hid hid_;
   std::string file_;
   std::string path_;
 
   Hid open_object(std::string_view object) const;
   Hid open_attr(std::string_view name, std::string_view object) const;
+  // The walked strings of the object `o` (attribute `attr`, or "" for its values); null when this file
+  // was not walked (an output) or the strings are of fixed length.
+  const std::vector<std::string>* walked_strings(hid_t o, hid_t ftype, const std::string& attr,
+                                                 const std::string& what) const;
   void write_raw(std::string_view name, hid_t mem_type, hid_t file_type, const void* data,
                  const std::vector<hsize_t>& dims, std::size_t count, std::string_view unit);
   void write_attr_raw(std::string_view name, std::string_view object, hid_t type, const void* data,

@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -33,18 +34,39 @@ constexpr rlim_t kChildMemory = rlim_t{1} << 30;
 
 int g_report = -1;  // the pipe to the parent
 
-void say(const std::string& line) {
-  std::string s = line + "\n";
-  for (const char* p = s.data(); !s.empty();) {
-    const ssize_t n = write(g_report, p, s.size());
-    if (n <= 0) return;
-    p += n;
-    s.erase(0, static_cast<std::size_t>(n));
+// Messages to the parent: a type byte, the payload's length (8 bytes), the payload. '@' the object being
+// read, '.' progress, '!' damaged (where, tab, why), 'k' done, 's' strings (see send_strings).
+void send(char type, const std::string& payload = "") {
+  std::string m(1, type);
+  const std::uint64_t n = payload.size();
+  m.append(reinterpret_cast<const char*>(&n), sizeof n);
+  m += payload;
+  for (const char* p = m.data(); !m.empty();) {
+    const ssize_t w = write(g_report, p, m.size());
+    if (w <= 0) _exit(5);
+    m.erase(0, static_cast<std::size_t>(w));
   }
 }
 
+void append_u64(std::string& s, std::uint64_t v) { s.append(reinterpret_cast<const char*>(&v), sizeof v); }
+
+// The strings of an object's attribute `attr` ("" for a dataset's values), for the parent's cache.
+void send_strings(haddr_t object, const std::string& attr, char* const* values, std::size_t count) {
+  std::string m;
+  append_u64(m, object);
+  append_u64(m, attr.size());
+  m += attr;
+  append_u64(m, count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t n = values[k] ? std::strlen(values[k]) : 0;
+    append_u64(m, n);
+    m.append(values[k] ? values[k] : "", n);
+  }
+  send('s', m);
+}
+
 [[noreturn]] void damaged(const std::string& where, const std::string& why) {
-  say("!" + where + "\t" + why);
+  send('!', where + "\t" + why);
   _exit(3);
 }
 
@@ -66,22 +88,42 @@ void read_native(hid_t ftype, hid_t mem_space, hssize_t count, const std::string
 struct Walk {
   long objects = 0;
   std::string path;  // of the object being walked
+  haddr_t address = 0;
 };
+
+// Variable-length strings through `read` (count of them, described by `space`): read, sent, freed.
+template <class Read>
+void walk_strings(hid_t file_type, hid_t space, hssize_t count, haddr_t object, const std::string& attr,
+                  const std::string& where, Read&& read) {
+  if (count < 0 || static_cast<hsize_t>(count) > kMaxReadBytes / sizeof(char*)) damaged(where, "implausibly large");
+  Hid type(H5Tcopy(H5T_C_S1));
+  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_cset(type.get(), H5Tget_cset(file_type));  // (libhdf5 converts neither way between ASCII and UTF-8)
+  std::vector<char*> values(static_cast<std::size_t>(count) + 1, nullptr);
+  if (count > 0 && read(type.get(), values.data()) < 0) damaged(where, "strings cannot be read");
+  send_strings(object, attr, values.data(), static_cast<std::size_t>(count));
+  if (count > 0) H5Dvlen_reclaim(type.get(), space, H5P_DEFAULT, values.data());
+}
+
+bool variable_strings(hid_t type) { return H5Tget_class(type) == H5T_STRING && H5Tis_variable_str(type) > 0; }
 
 herr_t visit_attribute(hid_t object, const char* name, const H5A_info_t*, void* data) {
   const auto& walk = *static_cast<const Walk*>(data);
   const std::string where = walk.path + " attribute '" + name + "'";
-  say("@" + where);
+  send('@', where);
   Hid a(H5Aopen(object, name, H5P_DEFAULT));
   if (a.get() < 0) damaged(where, "cannot be opened");
   Hid type(H5Aget_type(a.get())), space(H5Aget_space(a.get()));
   if (type.get() < 0 || space.get() < 0) damaged(where, "unreadable datatype or dataspace");
-  read_native(type.get(), space.get(), H5Sget_simple_extent_npoints(space.get()), where,
-              [&](hid_t mtype, void* buf) { return H5Aread(a.get(), mtype, buf); });
+  auto read = [&](hid_t mtype, void* buf) { return H5Aread(a.get(), mtype, buf); };
+  if (variable_strings(type.get()))
+    walk_strings(type.get(), space.get(), H5Sget_simple_extent_npoints(space.get()), walk.address, name, where, read);
+  else
+    read_native(type.get(), space.get(), H5Sget_simple_extent_npoints(space.get()), where, read);
   return 0;
 }
 
-void walk_dataset(hid_t d, const std::string& where) {
+void walk_dataset(hid_t d, haddr_t address, const std::string& where) {
   Hid type(H5Dget_type(d)), space(H5Dget_space(d)), dcpl(H5Dget_create_plist(d));
   if (type.get() < 0 || space.get() < 0 || dcpl.get() < 0) damaged(where, "unreadable datatype, dataspace or layout");
   const int rank = H5Sget_simple_extent_ndims(space.get());
@@ -105,17 +147,18 @@ void walk_dataset(hid_t d, const std::string& where) {
     std::vector<hsize_t> offset(static_cast<std::size_t>(rank) + 1);
     for (hsize_t c = 0; c < chunks; ++c) {
       unsigned mask = 0;
-      haddr_t address = 0;
+      haddr_t chunk_address = 0;
       hsize_t bytes = 0;
-      if (H5Dget_chunk_info(d, space.get(), c, offset.data(), &mask, &address, &bytes) < 0)
+      if (H5Dget_chunk_info(d, space.get(), c, offset.data(), &mask, &chunk_address, &bytes) < 0)
         damaged(where, "unreadable chunk index");
-      if (c % 4096 == 4095) say(".");
+      if (c % 4096 == 4095) send('.');
     }
   }
   if (count == 0) return;
   if (H5Tget_class(type.get()) == H5T_STRING) {  // strings (provenance, names): small, read whole
-    read_native(type.get(), space.get(), count, where,
-                [&](hid_t mtype, void* buf) { return H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf); });
+    auto read = [&](hid_t mtype, void* buf) { return H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf); };
+    if (variable_strings(type.get())) walk_strings(type.get(), space.get(), count, address, "", where, read);
+    else read_native(type.get(), space.get(), count, where, read);
     return;
   }
   // One element, through the chunk or block that holds it and the type conversion a reader uses.
@@ -132,13 +175,14 @@ herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void* 
   auto& walk = *static_cast<Walk*>(data);
   if (++walk.objects > kMaxObjects) damaged(walk.path, "implausibly many objects");
   walk.path = std::strcmp(name, ".") == 0 ? "/" : "/" + std::string(name);
-  say("@" + walk.path);
+  walk.address = info->addr;
+  send('@', walk.path);
   Hid o(H5Oopen(root, name, H5P_DEFAULT));
   if (o.get() < 0) damaged(walk.path, "cannot be opened");
   hsize_t index = 0;
   if (H5Aiterate2(o.get(), H5_INDEX_NAME, H5_ITER_NATIVE, &index, visit_attribute, &walk) < 0)
     damaged(walk.path, "unreadable attributes");
-  if (info->type == H5O_TYPE_DATASET) walk_dataset(o.get(), walk.path);
+  if (info->type == H5O_TYPE_DATASET) walk_dataset(o.get(), walk.address, walk.path);
   return 0;
 }
 
@@ -171,11 +215,37 @@ herr_t visit_object(hid_t root, const char* name, const H5O_info_t* info, void* 
   walk.path = "/";
   if (H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_NATIVE, visit_object, &walk, H5O_INFO_BASIC) < 0)
     damaged(walk.path, "damaged object header or link table");
-  say("ok");
+  send('k');
   _exit(0);
 }
 
 // ---- the parent ----
+
+// Decodes an 's' message into `out`; false when it is malformed.
+bool read_strings_message(const std::string& m, WalkedStrings& out) {
+  std::size_t at = 0;
+  auto u64 = [&](std::uint64_t& v) {
+    if (m.size() - at < sizeof v) return false;
+    std::memcpy(&v, m.data() + at, sizeof v);
+    at += sizeof v;
+    return true;
+  };
+  auto text = [&](std::string& t) {
+    std::uint64_t n;
+    if (!u64(n) || m.size() - at < n) return false;
+    t.assign(m, at, n);
+    at += n;
+    return true;
+  };
+  std::uint64_t address, count;
+  std::string attr;
+  if (!u64(address) || !text(attr) || !u64(count) || count > m.size()) return false;
+  std::vector<std::string> values(count);
+  for (auto& v : values)
+    if (!text(v)) return false;
+  out[{static_cast<haddr_t>(address), attr}] = std::move(values);
+  return at == m.size();
+}
 
 std::string describe(const std::string& name, const std::string& where, const std::string& why) {
   return name + (where.empty() ? "" : ":" + where) + ": damaged HDF5 file (" + why + ")";
@@ -183,7 +253,7 @@ std::string describe(const std::string& name, const std::string& where, const st
 
 }  // namespace
 
-void probe_hdf5_file(const std::string& name, const std::vector<char>* image) {
+std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, const std::vector<char>* image) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) throw RuntimeError(name + ": cannot check the file (" + std::strerror(errno) + ")");
   std::fflush(nullptr);  // nothing buffered is written twice
@@ -203,9 +273,10 @@ void probe_hdf5_file(const std::string& name, const std::vector<char>* image) {
     }
   }
   close(fds[1]);
+  auto strings = std::make_shared<WalkedStrings>();
   std::string received, last_object, verdict;
-  bool stalled = false;
-  for (;;) {
+  bool stalled = false, garbled = false, done = false;
+  while (!done) {
     pollfd p{fds[0], POLLIN, 0};
     const int ready = poll(&p, 1, kStallMilliseconds);
     if (ready < 0 && errno == EINTR) continue;
@@ -213,23 +284,36 @@ void probe_hdf5_file(const std::string& name, const std::vector<char>* image) {
       stalled = true;
       break;
     }
-    char buf[4096];
+    char buf[1 << 16];
     const ssize_t n = read(fds[0], buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
     received.append(buf, static_cast<std::size_t>(n));
-    for (std::size_t eol; (eol = received.find('\n')) != std::string::npos; received.erase(0, eol + 1)) {
-      const std::string line = received.substr(0, eol);
-      if (line.starts_with("@")) last_object = line.substr(1);
-      else if (line.starts_with("!") || line == "ok") verdict = line;
+    std::size_t at = 0;
+    while (received.size() - at >= 9) {
+      std::uint64_t length;
+      std::memcpy(&length, received.data() + at + 1, sizeof length);
+      if (length > kMaxReadBytes) {
+        garbled = done = true;
+        break;
+      }
+      if (received.size() - at - 9 < length) break;
+      const char type = received[at];
+      const std::string payload = received.substr(at + 9, length);
+      at += 9 + length;
+      if (type == '@') last_object = payload;
+      else if (type == '!') verdict = "!" + payload;
+      else if (type == 'k') verdict = "ok";
+      else if (type == 's' && !read_strings_message(payload, *strings)) garbled = done = true;
     }
+    received.erase(0, at);
   }
   close(fds[0]);
-  if (stalled) kill(pid, SIGKILL);
+  if (stalled || garbled) kill(pid, SIGKILL);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
   if (stalled) throw InputError(describe(name, last_object, "libhdf5 makes no progress reading it"));
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && verdict == "ok") return;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && verdict == "ok" && !garbled) return strings;
   if (verdict.starts_with("!")) {
     const auto tab = verdict.find('\t');
     const std::string where = verdict.substr(1, tab - 1), why = verdict.substr(tab + 1);

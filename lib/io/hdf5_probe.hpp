@@ -8,13 +8,17 @@
 // child that fails, crashes or stalls means a damaged file, refused with InputError naming the object
 // it was reading. Numeric data beyond the first element is not read: a damaged value is a wrong value or
 // a deflate error, which libhdf5 reports.
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "io/hdf5.hpp"
 
 namespace frac::io {
 
 // `name` is the file as messages call it; `image` (when not null) is the file's bytes, for standard input.
-// InputError for a file libhdf5 cannot walk; RuntimeError when the check itself cannot run.
-void probe_hdf5_file(const std::string& name, const std::vector<char>* image);
+// Returns the file's variable-length strings (io/hdf5.hpp, WalkedStrings). InputError for a file
+// libhdf5 cannot walk; RuntimeError when the check itself cannot run.
+std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, const std::vector<char>* image);
 
 }  // namespace frac::io

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes every reading tool: makes small valid files of every kind (a cell mesh, a node mesh, a DEM run, a
-# rubber run, a wave run, a fragments file), then runs fuzz_readers on MUTANTS mutants of each through
+# rubber run, a wave run, a fragments file; a scene of each engine, a column of values), then runs fuzz_readers on MUTANTS mutants of each through
 # every tool that reads that kind (and through standard input). Fails on any signal, hang or exit code
 # other than 0, 1 and 2; the failing mutants are kept in WORK/failures.
 # Usage: fuzz.sh SOURCE_DIR BIN_DIR DRIVER WORK_DIR MUTANTS [SEED [TIMEOUT_S [MEMORY_MB]]]
@@ -19,6 +19,10 @@ work=$(pwd)
 # Long enough for the disc to break into dozens of fragments (powerlaw-fit needs 10 values or more).
 "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --stop.t_max 1e-4 --output.frame_interval 1e-4 -q -o broken.h5
 "$bin/fragment-count" broken.h5 -q -o fragments.h5
+
+cp "$scenes/explosion.ini" explosion.ini
+cp "$scenes/stretch.ini" stretch.ini
+awk 'BEGIN { print "# fragment masses"; for (k = 1; k <= 200; k++) printf "%.6g\n", (1 - (k - 0.5) / 200) ^ (-1 / 1.5) }' > values.txt
 
 short_dem=(--stop.t_max 2e-6 -q -o out.h5)
 {
@@ -47,6 +51,11 @@ short_dem=(--stop.t_max 2e-6 -q -o out.h5)
   echo "$work/fragments.h5 $bin/powerlaw-fit - --bootstrap 0 --gof-samples 0 -q -o out.h5 <{}"
   echo "$work/fragments.h5 $bin/render $work/broken.h5 --fragments {} -q -o out.png"
   echo "$work/fragments.h5 $bin/h5-xdmf $work/broken.h5 --fragments {} -q -o out.xmf"
+  # Text inputs; a damaged scene may ask for any time step or length of run: the steps are capped.
+  echo "$work/explosion.ini $bin/dem-run --scene {} $work/mesh.h5 --stop.t_max 2e-6 --stop.max_steps 40 -q -o out.h5"
+  echo "$work/stretch.ini $bin/rubber-run --scene {} $work/strip.h5 --stop.t_max 2e-5 --stop.max_steps 200 -q -o out.h5"
+  echo "$work/values.txt $bin/powerlaw-fit {} --bootstrap 0 --gof-samples 0 --format text -q"
+  echo "$work/values.txt $bin/powerlaw-fit - --bootstrap 0 --gof-samples 0 --format text -q <{}"
 } > spec.txt
 
 "$driver" --spec spec.txt --mutants "$mutants" --seed "$seed" --timeout "$timeout" --memory "$memory" \
