@@ -128,8 +128,8 @@ int check(int argc, const char* const* argv, const std::string&) {
 
   const io::Group root = io::open_input(input);
   io::check_header(root, {"mesh", "run"});
-  const auto report = io::mesh_kind(root) == io::MeshKind::cells ? mesh::check_cell_mesh(io::read_cell_mesh(root))
-                                                                 : mesh::check_node_mesh(io::read_node_mesh(root));
+  const auto report = io::mesh_kind(root) == io::MeshKind::cells ? mesh::check_cell_mesh(io::read_cell_mesh_as_stored(root))
+                                                                 : mesh::check_node_mesh(io::read_node_mesh_as_stored(root));
   if (!common.quiet) std::cout << input << "\n" << report.summary;
   if (!report.ok()) {
     for (const auto& f : report.failures) std::cerr << "mesh-gen check: " << input << ": " << f << "\n";

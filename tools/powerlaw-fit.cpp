@@ -128,6 +128,9 @@ int run(int argc, char** argv) {
   if (input_format != "auto" && input_format != "hdf5" && input_format != "text")
     throw UsageError("--input-format: expected auto, hdf5 or text, got '" + input_format + "'");
   if (format != "hdf5" && format != "text") throw UsageError("--format: expected hdf5 or text, got '" + format + "'");
+  cli::check_threads(opt.threads, "--threads");
+  if (!(opt.significance > 0 && opt.significance < 1))
+    throw UsageError("--significance: must lie strictly between 0 and 1, got " + std::to_string(opt.significance));
   if (ks == "two-sided") opt.scan.ks = analysis::KsConvention::two_sided;
   else if (ks == "powerlaw-r") opt.scan.ks = analysis::KsConvention::powerlaw_r;
   else throw UsageError("--ks: expected two-sided or powerlaw-r, got '" + ks + "'");

@@ -1,29 +1,52 @@
 #include "core/cli.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "core/error.hpp"
 #include "core/version.hpp"
 
 namespace frac::cli {
 
+std::uint64_t parse_seed(const std::string& text, const std::string& option) {
+  // (boost would read "-1" as 2^64 - 1)
+  const bool digits = !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
+  errno = 0;
+  const unsigned long long v = digits ? std::strtoull(text.c_str(), nullptr, 10) : 0;
+  if (!digits || errno == ERANGE)
+    throw UsageError(option + ": must be a whole number from 0 to 18446744073709551615, got '" + text + "'");
+  return v;
+}
+
+void check_threads(int threads, const std::string& option) {
+  const int most = std::max(256, 4 * static_cast<int>(std::thread::hardware_concurrency()));
+  if (threads < 0 || threads > most)
+    throw UsageError(option + ": must lie in [0, " + std::to_string(most) + "] (0: all cores), got " +
+                     std::to_string(threads));
+}
+
 void add_common(po::options_description& desc, CommonOptions& common, unsigned which, const char* output_help) {
   auto add = desc.add_options();
   if (which & kOutput) add("output,o", po::value(&common.output)->default_value("-"), output_help);
-  if (which & kSeed) add("seed", po::value(&common.seed)->default_value(1), "seed of the random generator");
+  if (which & kSeed)
+    add("seed",
+        po::value<std::string>()->default_value("1")->notifier(
+            [&common](const std::string& t) { common.seed = parse_seed(t, "--seed"); }),
+        "seed of the random generator (0 to 2^64 - 1)");
   if (which & kQuiet) add("quiet,q", po::bool_switch(&common.quiet), "print nothing but errors");
   if (which & kConfig)
     add("config", po::value(&common.config), "read options from FILE: 'key = value' lines, key the long option name "
         "(the command line wins)");
   if (which & kThreads)
-    add("threads", po::value(&common.threads)->default_value(1)->notifier([](int t) {
-      if (t < 0) throw UsageError("--threads: must not be negative");
-    }),
+    add("threads", po::value(&common.threads)->default_value(1)->notifier([](int t) { check_threads(t, "--threads"); }),
         "threads for the force loops (0: all cores); the result does not depend on it. One thread is the "
         "efficient choice when several runs share the machine (make -j); with more, on a busy machine, set "
         "OMP_WAIT_POLICY=passive");
@@ -65,7 +88,19 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
 
   po::variables_map vm;
   try {
-    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+    try {
+      po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+    } catch (const po::too_many_positional_options_error&) {
+      // Name the arguments that are not options: the extra input, or the value of an option that
+      // lost its own (a missing value makes the next option's value look like an input).
+      const auto loose = po::collect_unrecognized(
+          po::command_line_parser(argc, argv).options(all).allow_unregistered().run().options, po::include_positional);
+      std::string list;
+      for (const auto& a : loose) list += (list.empty() ? "'" : ", '") + a + "'";
+      throw UsageError("more arguments than inputs: " + list + " (expected " +
+                       std::to_string(positional.max_total_count()) +
+                       " input; or an option before them is missing its value)");
+    }
     if (vm.count("help")) {
       std::cout << "Usage: " << spec.name << " " << spec.usage << "\n\n" << spec.summary << "\n\n"
                 << all << "\nExample:\n" << spec.example << "\n";

@@ -71,6 +71,11 @@ int run_subcommands(const std::string& tool, int argc, const char* const* argv,
 // The full command line, shell-quoted where needed.
 std::string command_line(int argc, const char* const* argv);
 
+// A seed given as text: digits only, at most 2^64 - 1 (UsageError naming `option` otherwise).
+std::uint64_t parse_seed(const std::string& text, const std::string& option);
+// A thread count: 0 (all cores) up to max(256, 4 x the cores); UsageError naming `option` otherwise.
+void check_threads(int threads, const std::string& option);
+
 // "40x20" -> {40, 20}; "0.4x0.2" -> {0.4, 0.2}. Throws UsageError naming `option`.
 std::array<double, 2> parse_pair_double(const std::string& text, const std::string& option);
 std::array<std::int64_t, 2> parse_pair_int(const std::string& text, const std::string& option);

@@ -47,7 +47,10 @@ Scene Scene::load(const std::string& path) {
   if (!in) throw InputError(path + ": cannot read the scene file");
   std::stringstream text;
   text << in.rdbuf();
-  return parse(text.str(), path);
+  Scene scene = parse(text.str(), path);
+  // An empty file (a truncated copy, a wrong path to /dev/null) would run on defaults alone.
+  if (scene.values_.empty()) throw InputError(path + ": the scene file sets no keys (an empty scene)");
+  return scene;
 }
 
 Scene Scene::load(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "dynamics/runaway.hpp"
 
 namespace frac::dem {
 namespace {
@@ -77,7 +78,9 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     writer->write_frame(frame);
   };
   double e0 = 0;
+  const dynamics::RunawayGuard runaway(q0, n, "cell");
   auto observe = [&](std::int64_t step) {
+    runaway.check(integrator.q(), step, integrator.t());
     const auto q = integrator.q();
     const auto v = integrator.v();
     const auto ke = model.kinetic_energy(v);

@@ -1,6 +1,7 @@
 #include "io/fragments_io.hpp"
 
 #include "io/atomic_file.hpp"
+#include "io/mesh_io.hpp"
 
 #include <cmath>
 #include <span>
@@ -60,6 +61,8 @@ RunInfo read_dem_run_info(const Group& root) {
   RunInfo info = read_run_info(root);
   const Group cells = root.group(kCells);
   require_count(cells, "inertia", info.inertia.size(), info.mass.size(), "one per cell, as mass");
+  const mesh::CellMesh mesh = read_cell_mesh(root);  // the run's mesh holds the invariants of mesh-gen check
+  require_count(cells, "mass", info.mass.size(), mesh.cells(), "one per cell of the mesh");
   return info;
 }
 

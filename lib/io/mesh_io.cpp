@@ -1,6 +1,10 @@
 #include "io/mesh_io.hpp"
 
+#include <algorithm>
+#include <initializer_list>
+
 #include "core/error.hpp"
+#include "mesh/check.hpp"
 
 namespace frac::io {
 namespace {
@@ -28,11 +32,6 @@ void write_box(Group& particles, const std::array<double, 4>& bounds) {
   box.set_attr("dimension", std::int64_t{2});
   box.set_attr("boundary", std::vector<std::string>{"none", "none"});
   box.set_attr("bounds", std::vector<double>(bounds.begin(), bounds.end()));
-}
-
-void require_length(const Group& g, std::string_view name, std::size_t got, std::size_t want) {
-  if (got != want)
-    throw InputError(g.where(name) + ": has " + std::to_string(got) + " rows, expected " + std::to_string(want));
 }
 
 void require_pairs_in_range(const Group& g, std::string_view name, const std::vector<std::array<std::int64_t, 2>>& p,
@@ -103,7 +102,41 @@ MeshKind mesh_kind(const Group& root) {
                    "nor /particles/nodes with /connectivity/bonds)");
 }
 
-mesh::CellMesh read_cell_mesh(const Group& root) {
+namespace {
+
+// The datasets of group `g` that give the same count (rows, or rows - 1 for an offset list) must agree:
+// InputError naming the first that differs from the most common count, and those it disagrees with.
+void require_same_count(const Group& g, std::initializer_list<std::pair<const char*, std::size_t>> counts,
+                        const char* what) {
+  std::size_t majority = counts.begin()->second, best = 0;
+  for (const auto& [name, n] : counts) {
+    std::size_t votes = 0;
+    for (const auto& c : counts) votes += c.second == n;
+    if (votes > best) best = votes, majority = n;
+  }
+  for (const auto& [name, n] : counts) {
+    if (n == majority) continue;
+    std::string agree;
+    for (const auto& c : counts)
+      if (c.second == majority) agree += (agree.empty() ? "" : ", ") + std::string(c.first);
+    throw InputError(g.where(name) + ": gives " + std::to_string(n) + " " + what + ", but " + agree + " give " +
+                     std::to_string(majority));
+  }
+}
+
+// InputError naming the first faults of `report` unless the mesh holds every invariant of mesh-gen check.
+void require_valid(const Group& root, const mesh::MeshReport& report) {
+  if (report.ok()) return;
+  std::string msg = root.file() + ": invalid mesh: ";
+  const std::size_t shown = std::min<std::size_t>(report.failures.size(), 3);
+  for (std::size_t k = 0; k < shown; ++k) msg += (k ? "; " : "") + report.failures[k];
+  if (report.failures.size() > shown) msg += "; and more (mesh-gen check " + root.file() + " lists them)";
+  throw InputError(msg);
+}
+
+}  // namespace
+
+mesh::CellMesh read_cell_mesh_as_stored(const Group& root) {
   mesh::CellMesh m;
   const Group cells = root.group("particles/cells");
   m.shape = cells.attr_string("shape");
@@ -115,32 +148,34 @@ mesh::CellMesh read_cell_mesh(const Group& root) {
   std::copy(bounds.begin(), bounds.end(), m.bounds.begin());
 
   m.centroid = to_vec2(cells.read<double>("centroid", nullptr, 2, 2));
-  const std::size_t n = m.centroid.size();
   m.vertex_offset = cells.read<std::int64_t>("vertex_offset", nullptr, 1);
-  require_length(cells, "vertex_offset", m.vertex_offset.size(), n + 1);
   m.vertex = to_vec2(cells.read<double>("vertex", nullptr, 2, 2));
+  m.area = cells.read<double>("area", nullptr, 1);
+  m.second_moment = cells.read<double>("second_moment", nullptr, 1);
+  const std::size_t n = m.area.size();
+  if (m.vertex_offset.empty()) throw InputError(cells.where("vertex_offset") + ": empty (it holds cells + 1 offsets)");
+  require_same_count(cells,
+                     {{"area", n}, {"centroid", m.centroid.size()}, {"second_moment", m.second_moment.size()},
+                      {"vertex_offset", m.vertex_offset.size() - 1}},
+                     "cells");
   if (m.vertex_offset.front() != 0 || m.vertex_offset.back() != static_cast<std::int64_t>(m.vertex.size()))
     throw InputError(cells.where("vertex_offset") + ": must run from 0 to the number of vertices (" +
                      std::to_string(m.vertex.size()) + ")");
   for (std::size_t k = 0; k < n; ++k)
     if (m.vertex_offset[k + 1] < m.vertex_offset[k])
       throw InputError(cells.where("vertex_offset") + ": decreases at cell " + std::to_string(k));
-  m.area = cells.read<double>("area", nullptr, 1);
-  require_length(cells, "area", m.area.size(), n);
-  m.second_moment = cells.read<double>("second_moment", nullptr, 1);
-  require_length(cells, "second_moment", m.second_moment.size(), n);
 
   const Group beams = root.group("connectivity/beams");
   m.beam = to_pairs(beams.read<std::int64_t>("pairs", nullptr, 2, 2));
-  require_pairs_in_range(beams, "pairs", m.beam, n);
   m.beam_length = beams.read<double>("length", nullptr, 1);
-  require_length(beams, "length", m.beam_length.size(), m.beam.size());
   m.beam_section = beams.read<double>("section", nullptr, 1);
-  require_length(beams, "section", m.beam_section.size(), m.beam.size());
+  require_same_count(beams, {{"pairs", m.beam.size()}, {"length", m.beam_length.size()}, {"section", m.beam_section.size()}},
+                     "beams");
+  require_pairs_in_range(beams, "pairs", m.beam, n);
   return m;
 }
 
-mesh::NodeMesh read_node_mesh(const Group& root) {
+mesh::NodeMesh read_node_mesh_as_stored(const Group& root) {
   mesh::NodeMesh m;
   const Group nodes = root.group("particles/nodes");
   m.nx = nodes.attr_int("nx");
@@ -150,16 +185,30 @@ mesh::NodeMesh read_node_mesh(const Group& root) {
   m.notch_length = nodes.attr_double("notch_length");
   m.notch_y = nodes.attr_double("notch_y");
   m.position = to_vec2(nodes.read<double>("reference_position", nullptr, 2, 2));
-  if (m.nx * m.ny != static_cast<std::int64_t>(m.position.size()))
-    throw InputError(nodes.where("reference_position") + ": has " + std::to_string(m.position.size()) +
-                     " rows, but nx * ny = " + std::to_string(m.nx * m.ny));
+  const auto rows = static_cast<std::int64_t>(m.position.size());
+  std::int64_t product = 0;  // (nx and ny come from the file: their product may overflow)
+  if (m.nx <= 0 || m.ny <= 0 || __builtin_mul_overflow(m.nx, m.ny, &product) || product != rows)
+    throw InputError(nodes.where("reference_position") + ": has " + std::to_string(rows) +
+                     " rows, but the attributes say nx = " + std::to_string(m.nx) + ", ny = " + std::to_string(m.ny));
   const Group bonds = root.group("connectivity/bonds");
   m.bond = to_pairs(bonds.read<std::int64_t>("pairs", nullptr, 2, 2));
-  require_pairs_in_range(bonds, "pairs", m.bond, m.position.size());
   m.bond_length = bonds.read<double>("length", nullptr, 1);
-  require_length(bonds, "length", m.bond_length.size(), m.bond.size());
   m.intact = bonds.read<std::uint8_t>("intact", nullptr, 1);
-  require_length(bonds, "intact", m.intact.size(), m.bond.size());
+  require_same_count(bonds, {{"pairs", m.bond.size()}, {"length", m.bond_length.size()}, {"intact", m.intact.size()}},
+                     "bonds");
+  require_pairs_in_range(bonds, "pairs", m.bond, m.position.size());
+  return m;
+}
+
+mesh::CellMesh read_cell_mesh(const Group& root) {
+  mesh::CellMesh m = read_cell_mesh_as_stored(root);
+  require_valid(root, mesh::check_cell_mesh(m));
+  return m;
+}
+
+mesh::NodeMesh read_node_mesh(const Group& root) {
+  mesh::NodeMesh m = read_node_mesh_as_stored(root);
+  require_valid(root, mesh::check_node_mesh(m));
   return m;
 }
 

@@ -392,7 +392,12 @@ std::string relative_reference(const std::string& target, const std::string& fro
   const fs::path base = from_file == "-" ? fs::current_path(ec)
                                          : fs::absolute(from_file, ec).lexically_normal().parent_path();
   const fs::path rel = abs_target.lexically_relative(base);
-  return rel.empty() ? abs_target.string() : rel.string();
+  const std::string ref = rel.empty() ? abs_target.string() : rel.string();
+  // XDMF writes "file:/dataset": a colon in the file's name would end the name there.
+  if (ref.find(':') != std::string::npos)
+    throw UsageError(target + ": XDMF cannot refer to a file whose path contains ':' (" + ref +
+                     "); rename the file or link it under another name");
+  return ref;
 }
 
 void write_text_file(const std::string& path, const std::string& text) { write_file_atomically(path, text); }

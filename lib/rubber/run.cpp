@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "dynamics/runaway.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/three_body_residual.hpp"
 
@@ -50,6 +51,13 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   }
 
   // The seed crack, along the mesh's crack line from the left edge; the bulk off the line tougher.
+  const double path_length = sys.path->x_max() - sys.path->x_min();
+  if (sc.seed_length >= path_length && sc.seed_length > 0) {
+    std::ostringstream msg;
+    msg << "crack.seed_length = " << sc.seed_length << " m: not shorter than the crack line across the sheet ("
+        << path_length << " m)";
+    throw UsageError(msg.str());
+  }
   if (sc.seed_length > 0) sys.seeded = sys.path->seed(model, sc.seed_length);
   if (sc.path_cutoff_ratio != 1) sys.path->set_bulk_cutoff(model, sc.path_cutoff_ratio * sc.cutoff_length);
   if (sc.drive_speed > 0)
@@ -209,9 +217,11 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
   CrackPath::Tip tip = path.tip(model, integ->q());
   sum.tip_start = tip;
   std::int64_t last_observed = -1;
+  const dynamics::RunawayGuard runaway(integ->q(), n, "node");
   auto observe = [&](std::int64_t step) {
     last_observed = step;
     const auto q = integ->q();
+    runaway.check(q, step, integ->t());
     const double ke = model.kinetic_energy(integ->v());
     const Model::Energy energy = model.potential_energy(q);
     const double pe = energy.total();

@@ -32,7 +32,7 @@ writers() {
   echo "$bin/mesh-gen voronoi --cells 200x100 -q -o $(o m.h5)"
   echo "$bin/mesh-gen triangular --nodes 300x100 --spacing 1e-3 -q -o $(o t.h5)"
   echo "$bin/dem-run --scene $scenes/explosion.ini mesh.h5 --stop.t_max 2e-5 --output.frame_interval 1e-7 -q -o $(o r.h5)"
-  echo "$bin/rubber-run --scene $scenes/stretch.ini strip.h5 --stop.t_max 1e-3 --output.frame_interval 1e-6 -q -o $(o r.h5)"
+  echo "$bin/rubber-run --scene $scenes/stretch.ini strip.h5 --crack.seed_length 0 --stop.t_max 1e-3 --output.frame_interval 1e-6 -q -o $(o r.h5)"
   echo "$bin/fragment-count run.h5 --time-series -q -o $(o f.h5)"
   echo "$bin/powerlaw-fit fragments.h5 --bootstrap 0 --gof-samples 0 -q -o $(o p.h5)"
   echo "$bin/powerlaw-fit fragments.h5 --bootstrap 0 --gof-samples 0 --format text -q -o $(o p.txt)"

@@ -1,12 +1,17 @@
-// Writes HDF5 files that the tools must refuse: a file of ours holding no mesh, and a mesh file of
-// an unknown format version. Used by the end-to-end bad-input tests.
+// Writes HDF5 files that the tools must refuse: a file of ours holding no mesh, a mesh file of an
+// unknown format version, and meshes that break one invariant of mesh-gen check each (bad-*.h5, cell
+// meshes of an 8x4 block; bad-node-*.h5, node meshes). Used by the end-to-end bad-input tests.
+#include <cmath>
+#include <functional>
 #include <iostream>
+#include <limits>
 #include <string>
 
 #include "core/provenance.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
+#include "mesh/random_lattice.hpp"
 #include "mesh/triangular_lattice.hpp"
 
 int main(int argc, char** argv) {
@@ -28,5 +33,54 @@ int main(int argc, char** argv) {
     out.root().set_attr("format_version", std::vector<std::int64_t>{2, 0});
     out.commit();
   }
+  using frac::mesh::CellMesh;
+  using frac::mesh::NodeMesh;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  frac::mesh::RandomLatticeOptions block;
+  block.width = 0.08, block.height = 0.04, block.nx = 8, block.ny = 4, block.seed = 5;
+  const CellMesh good = frac::mesh::make_random_lattice(block);
+  const auto cells = [&](const std::string& name, const std::function<void(CellMesh&)>& spoil,
+                         const std::function<void(frac::io::Group&)>& after = {}) {
+    CellMesh m = good;
+    spoil(m);
+    frac::io::OutputFile out(dir + "/bad-" + name + ".h5");
+    frac::io::write_header(out.root(), "mesh", run, out.uuid());
+    frac::io::write_mesh(out.root(), m);
+    if (after) after(out.root());
+    out.commit();
+  };
+  cells("nan-vertex", [&](CellMesh& m) { m.vertex[5].x() = nan; });
+  cells("nan-centroid", [&](CellMesh& m) { m.centroid[3].y() = nan; });
+  cells("clockwise", [](CellMesh& m) {  // cell 2's vertices in reverse order
+    std::reverse(m.vertex.begin() + m.vertex_offset[2], m.vertex.begin() + m.vertex_offset[3]);
+  });
+  cells("non-convex", [](CellMesh& m) {  // cell 2's first vertex pulled in past its centroid
+    m.vertex[static_cast<std::size_t>(m.vertex_offset[2])] *= -0.2;
+  });
+  cells("zero-beam", [](CellMesh& m) { m.beam_length[4] = 0.0; });
+  cells("nan-beam", [&](CellMesh& m) { m.beam_length[4] = nan; });
+  cells("self-beam", [](CellMesh& m) { m.beam[4][1] = m.beam[4][0]; });
+  cells("negative-area", [](CellMesh& m) { m.area[6] = -m.area[6]; });
+  cells("short-centroid", [](CellMesh&) {}, [](frac::io::Group& root) {
+    const auto c = root.read<double>("particles/cells/centroid");
+    H5Ldelete(root.id(), "particles/cells/centroid", H5P_DEFAULT);
+    root.write("particles/cells/centroid", std::span<const double>(c.data(), c.size() - 2), {c.size() / 2 - 1, 2}, "m");
+  });
+  cells("float-offsets", [](CellMesh&) {}, [](frac::io::Group& root) {
+    const auto o = root.read<double>("particles/cells/vertex_offset");
+    H5Ldelete(root.id(), "particles/cells/vertex_offset", H5P_DEFAULT);
+    root.write("particles/cells/vertex_offset", std::span<const double>(o), {o.size()});
+  });
+  const auto nodes = [&](const std::string& name, const std::function<void(NodeMesh&)>& spoil) {
+    NodeMesh m = frac::mesh::make_triangular_lattice({10, 6, 1e-3, "x", 0.0});
+    spoil(m);
+    frac::io::OutputFile out(dir + "/bad-node-" + name + ".h5");
+    frac::io::write_header(out.root(), "mesh", run, out.uuid());
+    frac::io::write_mesh(out.root(), m);
+    out.commit();
+  };
+  nodes("nan", [&](NodeMesh& m) { m.position[7].x() = nan; });
+  nodes("bond-length", [](NodeMesh& m) { m.bond_length[3] *= 2; });
+  nodes("duplicate-bond", [](NodeMesh& m) { m.bond[4] = m.bond[3]; });
   return 0;
 }

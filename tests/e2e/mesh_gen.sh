@@ -4,7 +4,7 @@ set -euo pipefail
 bin=$1 work=$2 case=$3
 source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
 refusal_outputs=(out.h5)
-refusal_inputs=('^in' nomesh.h5 version2.h5 notes.txt)
+refusal_inputs=('^in' nomesh.h5 version2.h5 notes.txt '^bad-')
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 mg=$bin/mesh-gen
 

@@ -5,7 +5,7 @@ set -euo pipefail
 bin=$1 scenes=$2 work=$3 case=$4
 source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
 refusal_outputs=(out.h5)
-refusal_inputs=(strip.h5 cells.h5 nomesh.h5 notes.txt)
+refusal_inputs=(strip.h5 cells.h5 nomesh.h5 notes.txt '^bad-')
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 rr=$bin/rubber-run
 mg=$bin/mesh-gen

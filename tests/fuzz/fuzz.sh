@@ -13,7 +13,7 @@ work=$(pwd)
 "$bin/mesh-gen" voronoi --shape disc --diameter 0.06 --cells 60 --seed 3 -q -o mesh.h5
 "$bin/mesh-gen" triangular --nodes 12x6 --spacing 1e-3 -q -o strip.h5
 "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --stop.t_max 2e-5 --output.frame_interval 5e-6 -q -o run.h5
-"$bin/rubber-run" --scene "$scenes/stretch.ini" strip.h5 --stop.t_max 1e-4 --output.frame_interval 3e-5 -q -o rubber.h5
+"$bin/rubber-run" --scene "$scenes/stretch.ini" strip.h5 --crack.seed_length 0 --stop.t_max 1e-4 --output.frame_interval 3e-5 -q -o rubber.h5
 "$bin/mesh-gen" triangular --nodes 100x4 --spacing 1e-3 -q |
   "$bin/rubber-run" --scene "$scenes/wave.ini" - --stop.t_max 5e-4 --output.frame_interval 2e-5 -q -o wave.h5
 # Long enough for the disc to break into dozens of fragments (powerlaw-fit needs 10 values or more).
@@ -32,7 +32,7 @@ short_dem=(--stop.t_max 2e-6 -q -o out.h5)
   echo "$work/mesh.h5 $bin/render {} -q -o out.png"
   echo "$work/mesh.h5 $bin/h5-xdmf {} -q -o out.xmf"
   echo "$work/strip.h5 $bin/mesh-gen check {} -q"
-  echo "$work/strip.h5 $bin/rubber-run --scene $scenes/stretch.ini {} --stop.t_max 2e-5 -q -o out.h5"
+  echo "$work/strip.h5 $bin/rubber-run --scene $scenes/stretch.ini {} --crack.seed_length 0 --stop.t_max 2e-5 -q -o out.h5"
   echo "$work/strip.h5 $bin/render {} -q -o out.svg"
   echo "$work/run.h5 $bin/observables {} -q"
   echo "$work/run.h5 $bin/observables - --compare $work/run.h5 -q <{}"
@@ -53,7 +53,7 @@ short_dem=(--stop.t_max 2e-6 -q -o out.h5)
   echo "$work/fragments.h5 $bin/h5-xdmf $work/broken.h5 --fragments {} -q -o out.xmf"
   # Text inputs; a damaged scene may ask for any time step or length of run: the steps are capped.
   echo "$work/explosion.ini $bin/dem-run --scene {} $work/mesh.h5 --stop.t_max 2e-6 --stop.max_steps 40 -q -o out.h5"
-  echo "$work/stretch.ini $bin/rubber-run --scene {} $work/strip.h5 --stop.t_max 2e-5 --stop.max_steps 200 -q -o out.h5"
+  echo "$work/stretch.ini $bin/rubber-run --scene {} $work/strip.h5 --crack.seed_length 0 --stop.t_max 2e-5 --stop.max_steps 200 -q -o out.h5"
   echo "$work/values.txt $bin/powerlaw-fit {} --bootstrap 0 --gof-samples 0 --format text -q"
   echo "$work/values.txt $bin/powerlaw-fit - --bootstrap 0 --gof-samples 0 --format text -q <{}"
 } > spec.txt

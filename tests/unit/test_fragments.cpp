@@ -569,8 +569,9 @@ TEST(FragmentsIo, RunToFragmentsFileRoundTrip) {
 }
 
 TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
-  // A Voronoi block and the same block renumbered (cells permuted, beams shuffled and reversed),
-  // each written as a run file with the same broken beams and motions: the same fragments.
+  // A Voronoi block and the same block renumbered (cells permuted, so the beams between them get new
+  // numbers and order; every mesh keeps its beams sorted with cell_a < cell_b), each written as a run
+  // file with the same broken beams and motions: the same fragments.
   const auto dir = temp_dir("renumbered");
   mesh::RandomLatticeOptions opt;
   opt.width = 0.2, opt.height = 0.2, opt.nx = 20, opt.ny = 20, opt.seed = 5;
@@ -579,9 +580,16 @@ TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
   Rng rng(17);
   std::vector<std::int64_t> p(n), q(b);
   std::iota(p.begin(), p.end(), 0);
-  std::iota(q.begin(), q.end(), 0);
   for (std::size_t k = n; k > 1; --k) std::swap(p[k - 1], p[static_cast<std::size_t>(rng.next() % k)]);
-  for (std::size_t k = b; k > 1; --k) std::swap(q[k - 1], q[static_cast<std::size_t>(rng.next() % k)]);
+  // Old beam k becomes beam q[k]: its rank among the renumbered pairs.
+  const auto renumbered_pair = [&](std::size_t k) {
+    const auto a = p[static_cast<std::size_t>(m.beam[k][0])], c = p[static_cast<std::size_t>(m.beam[k][1])];
+    return std::array<std::int64_t, 2>{std::min(a, c), std::max(a, c)};
+  };
+  std::vector<std::size_t> order(b);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return renumbered_pair(x) < renumbered_pair(y); });
+  for (std::size_t rank = 0; rank < b; ++rank) q[order[rank]] = static_cast<std::int64_t>(rank);
   mesh::CellMesh r = m;
   r.vertex.clear();
   r.vertex_offset = {0};
@@ -595,7 +603,7 @@ TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
     r.centroid[j] = m.centroid[i], r.area[j] = m.area[i], r.second_moment[j] = m.second_moment[i];
   }
   for (std::size_t k = 0; k < b; ++k) {
-    r.beam[q[k]] = {p[m.beam[k][1]], p[m.beam[k][0]]};
+    r.beam[q[k]] = renumbered_pair(k);
     r.beam_length[q[k]] = m.beam_length[k], r.beam_section[q[k]] = m.beam_section[k];
   }
   // Per old cell and old beam: mass, inertia, motion, intact flag.

@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Bad input every tool must refuse (exit 2, the culprit named, no output or temporary left) and runaway
+# states a run must stop (exit 1, the step and the body named).
+# Usage: bad_inputs.sh SOURCE_DIR BIN_DIR WORK_DIR CASE
+#   meshes   each mesh of make_bad_files breaking one invariant, through every tool that reads it
+#   options  numeric options out of range, misplaced arguments, an empty scene, an XDMF-unsafe name
+#   runaway  an explosion of 1e300 J: exit 1 naming the step and the cell
+set -euo pipefail
+src=$1 bin=$2 work=$3 case=$4
+scenes=$src/data/scenes
+source "$(cd "$(dirname "$0")" && pwd)/lib.sh"  # fail, expect_refusal
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+refusal_outputs=(out.h5 out.png out.xmf)
+refusal_inputs=('^bad-' '^nomesh' '^version2' '^mesh\.h5$' '^run\.h5$' '^strip\.h5$' '^values\.txt$' '^empty\.ini$' '^a:b\.h5$')
+
+case $case in
+  meshes)
+    "$bin/../tests/e2e/make_bad_files" .
+    dem=("$bin/dem-run" --scene "$scenes/uniaxial.ini" --stop.t_max 1e-6 -q -o out.h5)
+    rubber=("$bin/rubber-run" --scene "$scenes/stretch.ini" --stop.t_max 1e-6 -q -o out.h5)
+    # file : what the message must name
+    while IFS=: read -r file needle; do
+      expect_refusal "$needle" "${dem[@]}" "$file"
+      expect_refusal "$needle" "$bin/render" "$file" -q -o out.png
+      expect_refusal "$needle" "$bin/h5-xdmf" "$file" -q -o out.xmf
+      rm -f "${file%.h5}.xmf"
+    done <<'CASES'
+bad-nan-vertex.h5:finite: cell 1 has a non-finite coordinate
+bad-nan-centroid.h5:finite: cell 3 has a non-finite coordinate
+bad-clockwise.h5:convex: cell 2 is not convex and counter-clockwise
+bad-non-convex.h5:convex: cell 2 is not convex and counter-clockwise
+bad-zero-beam.h5:beam length: beam 4 (1, 9): 0 m
+bad-nan-beam.h5:beam length: beam 4 (1, 9): nan m
+bad-self-beam.h5:beam 4 (1, 1): need cell_a < cell_b
+bad-negative-area.h5:area: cell 6: area -
+bad-short-centroid.h5:/particles/cells/centroid: gives 31 cells, but area, second_moment, vertex_offset give 32
+bad-float-offsets.h5:/particles/cells/vertex_offset: holds floating-point values
+CASES
+    while IFS=: read -r file needle; do
+      expect_refusal "$needle" "${rubber[@]}" "$file"
+      expect_refusal "$needle" "$bin/render" "$file" -q -o out.png
+    done <<'CASES'
+bad-node-nan.h5:invalid mesh: finite: node 7 has a non-finite coordinate
+bad-node-bond-length.h5:bond length: bond 3 (1, 10): 0.002 m
+bad-node-duplicate-bond.h5:bond duplicate: bond 4 (1, 10)
+CASES
+    # mesh-gen check reports the same faults, all of them.
+    set +e; "$bin/mesh-gen" check bad-clockwise.h5 > report.txt 2>&1; rc=$?; set -e
+    [[ $rc -ne 0 ]] && grep -q "cell 2 is not convex" report.txt || fail "mesh-gen check passes a clockwise cell"
+    rm -f report.txt
+    ;;
+  options)
+    "$bin/mesh-gen" voronoi --shape disc --diameter 0.06 --cells 60 --seed 3 -q -o mesh.h5
+    "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --stop.t_max 2e-6 -q -o run.h5
+    "$bin/mesh-gen" triangular --nodes 60x20 --spacing 1e-3 -q -o strip.h5
+    awk 'BEGIN { for (k = 1; k <= 200; k++) printf "%.6g\n", (1 - (k - 0.5) / 200) ^ (-1 / 1.5) }' > values.txt
+    : > empty.ini
+    expect_refusal "--seed: must be a whole number" "$bin/mesh-gen" voronoi --cells 8x4 --seed -1 -o out.h5
+    expect_refusal "--seed: must be a whole number" "$bin/mesh-gen" voronoi --cells 8x4 --seed 99999999999999999999 -o out.h5
+    expect_refusal "--threads: must lie in [0," "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --threads 100000 -o out.h5
+    expect_refusal "--threads: must lie in [0," "$bin/powerlaw-fit" values.txt --threads -1 --format text
+    expect_refusal "--significance: must lie strictly between 0 and 1" "$bin/powerlaw-fit" values.txt --significance 2
+    expect_refusal "--polygon-limit: must not be negative" "$bin/h5-xdmf" run.h5 --polygon-limit -5 -o out.xmf
+    expect_refusal "empty.ini: the scene file sets no keys" "$bin/dem-run" --scene empty.ini mesh.h5 -o out.h5
+    expect_refusal "crack.seed_length = 10 m: not shorter than the crack line" \
+      "$bin/rubber-run" --scene "$scenes/stretch.ini" strip.h5 --crack.seed_length 10 -o out.h5
+    cp run.h5 a:b.h5
+    expect_refusal "XDMF cannot refer to a file whose path contains ':'" "$bin/h5-xdmf" a:b.h5 -o out.xmf
+    expect_refusal "more arguments than inputs: 'mesh.h5', 'run.h5'" "$bin/mesh-gen" check mesh.h5 run.h5
+    expect_refusal "the required argument for option '--scene' is missing" "$bin/dem-run" mesh.h5 --scene
+    ;;
+  runaway)
+    "$bin/mesh-gen" voronoi --shape disc --diameter 0.06 --cells 60 --seed 3 -q -o mesh.h5
+    set +e
+    "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --loading.energy 1e300 -q -o out.h5 2>stderr.txt; rc=$?
+    set -e
+    cat stderr.txt
+    [[ $rc -eq 1 ]] || fail "an explosion of 1e300 J: exit $rc, expected 1"
+    grep -qE "runaway at step [0-9]+ .*: cell [0-9]+ is at" stderr.txt || fail "the runaway message names no step and cell"
+    [[ ! -e out.h5 && -z $(ls -A | grep tmp || true) ]] || fail "output left behind: $(ls -A)"
+    ;;
+  *) fail "unknown case $case" ;;
+esac
+echo "ok: $case"
