@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "core/error.hpp"
 #include "core/provenance.hpp"
@@ -346,5 +349,51 @@ TEST(Io, WriteRefusesDataThatDoesNotMatchItsShape) {
   io::OutputFile out((dir / "x.h5").string());
   const std::vector<double> three{1.0, 2.0, 3.0};
   EXPECT_THROW(out.root().write("x", std::span<const double>(three), {2}), RuntimeError);
+  fs::remove_all(dir);
+}
+
+// A damaged global heap (the store of variable-length strings): every object in it claims 2^47 bytes.
+// libhdf5 1.10 follows such a reference out of bounds; the validating walk of open_input meets it in a
+// child process and refuses the file naming what it was reading, instead of the reader crashing.
+TEST(Io, DamagedStringHeapIsRefusedNotFollowed) {
+  const auto dir = temp_dir("heap");
+  const auto path = (dir / "h.h5").string();
+  {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    out.root().write_strings("names", {"alpha", "beta", "gamma"});
+    out.commit();
+  }
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // Collection: "GCOL", version, 3 reserved, size (8); then objects: index (2), references (2), reserved (4),
+  // size (8), data padded to 8 bytes. Index 0 is the free space that ends the collection.
+  int damaged = 0;
+  for (std::size_t at = bytes.find("GCOL"); at != std::string::npos; at = bytes.find("GCOL", at + 4)) {
+    std::uint64_t collection = 0;
+    std::memcpy(&collection, bytes.data() + at + 8, 8);
+    for (std::size_t obj = at + 16; obj + 16 <= std::min(bytes.size(), at + collection);) {
+      std::uint16_t index = 0;
+      std::uint64_t size = 0;
+      std::memcpy(&index, bytes.data() + obj, 2);
+      std::memcpy(&size, bytes.data() + obj + 8, 8);
+      if (index == 0) break;
+      const std::uint64_t huge = std::uint64_t{1} << 47;
+      std::memcpy(bytes.data() + obj + 8, &huge, 8);
+      ++damaged;
+      obj += 16 + (size + 7) / 8 * 8;
+    }
+  }
+  ASSERT_GT(damaged, 3) << "no string objects found in the file's global heap";
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  try {
+    const io::Group root = io::open_input(path);
+    FAIL() << "a file with a damaged string heap was opened";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("damaged HDF5 file"), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
