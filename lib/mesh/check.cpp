@@ -90,6 +90,8 @@ double shared_side(std::span<const Vec2> p, std::span<const Vec2> q, double tol)
 // set): 1e-8 g for lengths. The generator merges Voronoi vertices closer than 1e-9 g and the rest is
 // round-off of order 1e-16 of the coordinates, so 1e-8 g leaves a margin of 10 while still catching
 // any real error. Areas and second moments: 1e-9 relative (they are recomputed from the same vertices).
+// Every comparison is written so that a NaN fails it; values of any size are safe (no overflow in
+// integer arithmetic, no index taken from a value not yet checked).
 MeshReport check_cell_mesh(const CellMesh& m) {
   MeshReport r;
   {
@@ -114,41 +116,84 @@ MeshReport check_cell_mesh(const CellMesh& m) {
         fail.add("arrays", "beam_length/beam_section sizes differ from the number of beams");
         arrays_ok = false;
       }
+      // In order from offset 0: each step is taken only from an offset already known to lie in
+      // [0, vertices], so the difference cannot overflow.
       for (std::size_t k = 0; arrays_ok && k < n; ++k) {
-        if (m.vertex_offset[k + 1] - m.vertex_offset[k] < 3) {
+        if (m.vertex_offset[k + 1] < m.vertex_offset[k] || m.vertex_offset[k + 1] - m.vertex_offset[k] < 3) {
           fail.add("arrays", "cell " + std::to_string(k) + " has fewer than 3 vertices (or offsets decrease)");
           arrays_ok = false;
         }
       }
       if (!arrays_ok) return;
 
+      // Finite values first: a NaN or an infinity makes every later comparison meaningless.
+      auto finite = [](const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); };
+      bool all_finite = true;
+      auto non_finite = [&](const std::string& what) {
+        fail.add("finite", what + " is not finite");
+        all_finite = false;
+      };
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::string id = "cell " + std::to_string(k);
+        if (!finite(m.centroid[k])) non_finite(id + ": centroid");
+        if (!std::isfinite(m.area[k])) non_finite(id + ": area");
+        if (!std::isfinite(m.second_moment[k])) non_finite(id + ": second_moment");
+        const auto poly = m.polygon(k);
+        for (std::size_t j = 0; j < poly.size(); ++j)
+          if (!finite(poly[j])) {
+            non_finite(id + ": vertex " + std::to_string(j));
+            break;
+          }
+      }
+      for (std::size_t e = 0; e < m.beams(); ++e) {
+        const std::string id = "beam " + std::to_string(e);
+        if (!std::isfinite(m.beam_length[e])) non_finite(id + ": length");
+        if (!std::isfinite(m.beam_section[e])) non_finite(id + ": section");
+      }
+      if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
+      for (const double b : m.bounds)
+        if (!std::isfinite(b)) {
+          non_finite("attribute bounds");
+          break;
+        }
+      if (!all_finite) return;
+
       double total_area = 0.0;
       for (std::size_t k = 0; k < n; ++k) total_area += m.area[k];
-      const double g = m.spacing > 0.0 ? m.spacing : std::sqrt(std::abs(total_area) / static_cast<double>(n));
+      const double mean_size = std::sqrt(std::abs(total_area) / static_cast<double>(n));
+      if (m.spacing < 0) fail.add("spacing", fmt(m.spacing) + " m is negative");
+      // The spacing sets every length tolerance: one far from the cells' size would pass anything.
+      if (m.spacing > 0 && mean_size > 0 && !(m.spacing <= 100 * mean_size && m.spacing >= 0.01 * mean_size))
+        fail.add("spacing", fmt(m.spacing) + " m, far from the cells' mean size " + fmt(mean_size) + " m");
+      const double g = m.spacing > 0 ? m.spacing : mean_size;
       const double len_tol = 1e-8 * g;
       const double rel_tol = 1e-9;
+      const auto& box = m.bounds;
+      if (!(box[0] <= box[2] && box[1] <= box[3]))
+        fail.add("bounds", "box (" + fmt(box[0]) + ", " + fmt(box[1]) + ") to (" + fmt(box[2]) + ", " + fmt(box[3]) +
+                               ") is empty");
 
       std::vector<int> degree(n, 0);
       for (std::size_t k = 0; k < n; ++k) {
         const auto poly = m.polygon(k);
         auto id = [&] { return std::string("cell " + std::to_string(k)); };
-        bool finite = std::isfinite(m.centroid[k].x()) && std::isfinite(m.centroid[k].y());
-        for (const auto& v : poly) finite = finite && std::isfinite(v.x()) && std::isfinite(v.y());
-        if (!finite) {
-          fail.add("finite", id() + " has a non-finite coordinate");
-          continue;
-        }
+        const Vec2& p = m.centroid[k];
+        if (!(p.x() >= box[0] - len_tol && p.x() <= box[2] + len_tol && p.y() >= box[1] - len_tol &&
+              p.y() <= box[3] + len_tol))
+          fail.add("bounds", id() + ": centroid (" + fmt(p.x()) + ", " + fmt(p.y()) + ") lies outside the box");
         if (!geometry::is_convex_ccw(poly, 1e-9)) fail.add("convex", id() + " is not convex and counter-clockwise");
         const Vec2 c = geometry::centroid(poly);
-        if (c.norm() > len_tol) {
+        if (!(c.norm() <= len_tol)) {
           fail.add("centroid", id() + ": body-frame centroid at distance " + fmt(c.norm()) + " m");
         }
         const double a = geometry::signed_area(poly);
-        if (std::abs(a - m.area[k]) > rel_tol * std::abs(a)) {
+        if (!(m.area[k] > 0)) {
+          fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2 is not positive");
+        } else if (!(std::abs(a - m.area[k]) <= rel_tol * std::abs(a))) {
           fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2, vertices give " + fmt(a));
         }
         const double j = geometry::polar_second_moment(poly);
-        if (std::abs(j - m.second_moment[k]) > rel_tol * std::abs(j)) {
+        if (!(std::abs(j - m.second_moment[k]) <= rel_tol * std::abs(j))) {
           fail.add("second_moment", id() + ": " + fmt(m.second_moment[k]) + " m^4, vertices give " + fmt(j));
         }
       }
@@ -163,7 +208,11 @@ MeshReport check_cell_mesh(const CellMesh& m) {
           fail.add("beam index", id() + " out of range");
           continue;
         }
-        if (a >= b) fail.add("beam order", id() + ": need cell_a < cell_b");
+        if (a == b) {
+          fail.add("beam order", id() + " joins a cell to itself");
+          continue;
+        }
+        if (a > b) fail.add("beam order", id() + ": need cell_a < cell_b");
         if (e > 0 && !(m.beam[e - 1] < m.beam[e])) {
           fail.add(m.beam[e - 1] == m.beam[e] ? "beam duplicate" : "beam order",
                    id() + " follows " + std::to_string(m.beam[e - 1][0]) + ", " + std::to_string(m.beam[e - 1][1]));
@@ -172,7 +221,9 @@ MeshReport check_cell_mesh(const CellMesh& m) {
         ++degree[ua];
         ++degree[ub];
         const double l0 = (m.centroid[ub] - m.centroid[ua]).norm();
-        if (!(std::abs(m.beam_length[e] - l0) <= len_tol)) {
+        if (!(m.beam_length[e] > 0)) {
+          fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m is not positive");
+        } else if (!(std::abs(m.beam_length[e] - l0) <= len_tol)) {
           fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m, centroids " + fmt(l0) + " m apart");
         }
         if (!(m.beam_section[e] > 0.0)) {
@@ -207,6 +258,7 @@ MeshReport check_cell_mesh(const CellMesh& m) {
 
 // Tolerance: bond lengths equal the node distances within 1e-9 of the spacing (or of the bond length
 // when the spacing is not set); positions are computed directly, so the round-off is ~1e-16.
+// Non-finite values are reported first, and alone: every later comparison would be meaningless.
 MeshReport check_node_mesh(const NodeMesh& m) {
   MeshReport r;
   {
@@ -214,18 +266,37 @@ MeshReport check_node_mesh(const NodeMesh& m) {
     [&] {
       const std::size_t n = m.nodes();
       if (n < 2) fail.add("nodes", "need at least 2, have " + std::to_string(n));
-      if (m.nx > 0 && m.ny > 0 && m.nx * m.ny != static_cast<std::int64_t>(n)) {
-        fail.add("nodes", std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx * m.ny));
+      if (m.nx < 0 || m.ny < 0) {
+        fail.add("nodes", "nx = " + std::to_string(m.nx) + ", ny = " + std::to_string(m.ny) + ": negative");
+      } else if (m.nx > 0 && m.ny > 0 &&
+                 (m.nx > static_cast<std::int64_t>(n) / m.ny || m.nx * m.ny != static_cast<std::int64_t>(n))) {
+        fail.add("nodes", std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx) + " * " +
+                              std::to_string(m.ny));
       }
       if (m.bond_length.size() != m.bonds() || m.intact.size() != m.bonds()) {
         fail.add("arrays", "bond_length/intact sizes differ from the number of bonds");
         return;
       }
+      bool all_finite = true;
+      auto non_finite = [&](const std::string& what) {
+        fail.add("finite", what + " is not finite");
+        all_finite = false;
+      };
       for (std::size_t k = 0; k < n; ++k) {
-        if (!std::isfinite(m.position[k].x()) || !std::isfinite(m.position[k].y())) {
-          fail.add("finite", "node " + std::to_string(k) + " has a non-finite coordinate");
-        }
+        if (!std::isfinite(m.position[k].x()) || !std::isfinite(m.position[k].y()))
+          non_finite("node " + std::to_string(k) + ": position");
       }
+      for (std::size_t e = 0; e < m.bonds(); ++e)
+        if (!std::isfinite(m.bond_length[e])) non_finite("bond " + std::to_string(e) + ": length");
+      if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
+      if (!std::isfinite(m.notch_length)) non_finite("attribute notch_length");
+      if (!std::isfinite(m.notch_y)) non_finite("attribute notch_y");
+      if (!all_finite) return;
+      if (m.spacing < 0) fail.add("spacing", fmt(m.spacing) + " m is negative");
+      if (m.rows_along != "x" && m.rows_along != "y")
+        fail.add("rows_along", "'" + m.rows_along + "': expected x or y");
+      if (m.notch_length < 0) fail.add("notch", "notch_length " + fmt(m.notch_length) + " m is negative");
+
       std::vector<int> degree(n, 0);
       std::int64_t intact = 0;
       for (std::size_t e = 0; e < m.bonds(); ++e) {
@@ -237,14 +308,20 @@ MeshReport check_node_mesh(const NodeMesh& m) {
           fail.add("bond index", id() + " out of range");
           continue;
         }
-        if (a >= b) fail.add("bond order", id() + ": need node_a < node_b");
+        if (a == b) {
+          fail.add("bond order", id() + " joins a node to itself");
+          continue;
+        }
+        if (a > b) fail.add("bond order", id() + ": need node_a < node_b");
         if (e > 0 && !(m.bond[e - 1] < m.bond[e])) {
           fail.add(m.bond[e - 1] == m.bond[e] ? "bond duplicate" : "bond order",
                    id() + " follows " + std::to_string(m.bond[e - 1][0]) + ", " + std::to_string(m.bond[e - 1][1]));
         }
         const double dist = (m.position[static_cast<std::size_t>(b)] - m.position[static_cast<std::size_t>(a)]).norm();
         const double scale = m.spacing > 0.0 ? m.spacing : m.bond_length[e];
-        if (!(std::abs(m.bond_length[e] - dist) <= 1e-9 * scale)) {
+        if (!(m.bond_length[e] > 0)) {
+          fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m is not positive");
+        } else if (!(std::abs(m.bond_length[e] - dist) <= 1e-9 * scale)) {
           fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m, nodes " + fmt(dist) + " m apart");
         }
         if (m.intact[e] > 1) fail.add("intact", id() + ": intact must be 0 or 1");

@@ -25,14 +25,14 @@ case $case in
       expect_refusal "$needle" "$bin/h5-xdmf" "$file" -q -o out.xmf
       rm -f "${file%.h5}.xmf"
     done <<'CASES'
-bad-nan-vertex.h5:finite: cell 1 has a non-finite coordinate
-bad-nan-centroid.h5:finite: cell 3 has a non-finite coordinate
+bad-nan-vertex.h5:finite: cell 1: vertex 1 is not finite
+bad-nan-centroid.h5:finite: cell 3: centroid is not finite
 bad-clockwise.h5:convex: cell 2 is not convex and counter-clockwise
 bad-non-convex.h5:convex: cell 2 is not convex and counter-clockwise
-bad-zero-beam.h5:beam length: beam 4 (1, 9): 0 m
-bad-nan-beam.h5:beam length: beam 4 (1, 9): nan m
-bad-self-beam.h5:beam 4 (1, 1): need cell_a < cell_b
-bad-negative-area.h5:area: cell 6: area -
+bad-zero-beam.h5:beam length: beam 4 (1, 9): 0 m is not positive
+bad-nan-beam.h5:finite: beam 4: length is not finite
+bad-self-beam.h5:beam 4 (1, 1) joins a cell to itself
+bad-negative-area.h5:area: cell 6: area -0.000110640963923 m^2 is not positive
 bad-short-centroid.h5:/particles/cells/centroid: gives 31 cells, but area, second_moment, vertex_offset give 32
 bad-float-offsets.h5:/particles/cells/vertex_offset: holds floating-point values
 CASES
@@ -40,7 +40,7 @@ CASES
       expect_refusal "$needle" "${rubber[@]}" "$file"
       expect_refusal "$needle" "$bin/render" "$file" -q -o out.png
     done <<'CASES'
-bad-node-nan.h5:invalid mesh: finite: node 7 has a non-finite coordinate
+bad-node-nan.h5:invalid mesh: finite: node 7: position is not finite
 bad-node-bond-length.h5:bond length: bond 3 (1, 10): 0.002 m
 bad-node-duplicate-bond.h5:bond duplicate: bond 4 (1, 10)
 CASES
