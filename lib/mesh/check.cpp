@@ -134,21 +134,20 @@ MeshReport check_cell_mesh(const CellMesh& m) {
         all_finite = false;
       };
       for (std::size_t k = 0; k < n; ++k) {
-        const std::string id = "cell " + std::to_string(k);
-        if (!finite(m.centroid[k])) non_finite(id + ": centroid");
-        if (!std::isfinite(m.area[k])) non_finite(id + ": area");
-        if (!std::isfinite(m.second_moment[k])) non_finite(id + ": second_moment");
+        auto id = [&] { return "cell " + std::to_string(k); };
+        if (!finite(m.centroid[k])) non_finite(id() + ": centroid");
+        if (!std::isfinite(m.area[k])) non_finite(id() + ": area");
+        if (!std::isfinite(m.second_moment[k])) non_finite(id() + ": second_moment");
         const auto poly = m.polygon(k);
         for (std::size_t j = 0; j < poly.size(); ++j)
           if (!finite(poly[j])) {
-            non_finite(id + ": vertex " + std::to_string(j));
+            non_finite(id() + ": vertex " + std::to_string(j));
             break;
           }
       }
       for (std::size_t e = 0; e < m.beams(); ++e) {
-        const std::string id = "beam " + std::to_string(e);
-        if (!std::isfinite(m.beam_length[e])) non_finite(id + ": length");
-        if (!std::isfinite(m.beam_section[e])) non_finite(id + ": section");
+        if (!std::isfinite(m.beam_length[e])) non_finite("beam " + std::to_string(e) + ": length");
+        if (!std::isfinite(m.beam_section[e])) non_finite("beam " + std::to_string(e) + ": section");
       }
       if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
       for (const double b : m.bounds)

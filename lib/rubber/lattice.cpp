@@ -73,7 +73,7 @@ Lattice build_lattice(const mesh::NodeMesh& m, bool periodic_x, bool periodic_y)
     const double len = std::hypot(dx, dy);
     double th = std::atan2(dy, dx) - L.base_angle;
     const double sf = std::round(th / sixty);
-    if (std::abs(len - d) > 1e-6 * d || std::abs(th - sf * sixty) > 1e-6) {
+    if (!(std::abs(len - d) <= 1e-6 * d && std::abs(th - sf * sixty) <= 1e-6)) {  // (a NaN fails too)
       throw InputError("bond " + std::to_string(k) + " (" + node_name(a) + " to " + node_name(b) +
                        ") is not a nearest-neighbour bond of a triangular lattice of spacing " + std::to_string(d) +
                        " m with rows along " + m.rows_along);

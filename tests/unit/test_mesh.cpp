@@ -2,9 +2,11 @@
 // triangular lattice of the rubber sheet (rubber-lattice.md §6), and their checker.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <string>
@@ -383,6 +385,125 @@ TEST(MeshCheck, DetectsBrokenNodeMeshes) {
   bad = good;
   std::swap(bad.bond[0][0], bad.bond[0][1]);
   EXPECT_FALSE(frac::mesh::check_node_mesh(bad).ok());
+}
+
+// The first failure of a report (what a tool's message shows first), or "(valid)".
+std::string first_failure(const frac::mesh::MeshReport& r) { return r.failures.empty() ? "(valid)" : r.failures[0]; }
+
+TEST(MeshCheck, NonFiniteValuesAreReportedFirstAndAlone) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const auto good = frac::mesh::make_random_lattice(rect(6, 4, 0.06, 0.04, 1.0, 2));
+  ASSERT_TRUE(frac::mesh::check_cell_mesh(good).ok());
+  // Each value a comparison could let through: a NaN fails no "greater than" test.
+  auto m = good;
+  m.area[5] = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: cell 5: area is not finite");
+  m = good;
+  m.second_moment[2] = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: cell 2: second_moment is not finite");
+  m = good;
+  m.centroid[3].y() = inf;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: cell 3: centroid is not finite");
+  m = good;
+  m.vertex[static_cast<std::size_t>(m.vertex_offset[1]) + 2].x() = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: cell 1: vertex 2 is not finite");
+  m = good;
+  m.beam_section[4] = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: beam 4: section is not finite");
+  m = good;
+  m.spacing = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: attribute spacing is not finite");
+  m = good;
+  m.bounds[1] = -inf;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "finite: attribute bounds is not finite");
+  // A NaN and a real fault: the NaN alone (the rest would be noise).
+  m = good;
+  m.area[5] = nan;
+  std::reverse(m.vertex.begin() + m.vertex_offset[2], m.vertex.begin() + m.vertex_offset[3]);
+  EXPECT_EQ(frac::mesh::check_cell_mesh(m).failures.size(), 1u);
+}
+
+TEST(MeshCheck, NamesEachCellAndBeamFault) {
+  const auto good = frac::mesh::make_random_lattice(rect(6, 4, 0.06, 0.04, 1.0, 2));
+  auto m = good;
+  m.area[6] = -m.area[6];
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)).rfind("area: cell 6: area -", 0), 0u)
+      << first_failure(frac::mesh::check_cell_mesh(m));
+  m = good;
+  m.beam[4][1] = m.beam[4][0];
+  const std::string self = "beam order: beam 4 (" + std::to_string(m.beam[4][0]) + ", " + std::to_string(m.beam[4][0]) +
+                           ") joins a cell to itself";
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), self);
+  m = good;
+  m.beam_length[3] = 0;
+  EXPECT_NE(first_failure(frac::mesh::check_cell_mesh(m)).find("beam 3 (" ), std::string::npos);
+  EXPECT_NE(first_failure(frac::mesh::check_cell_mesh(m)).find("0 m is not positive"), std::string::npos);
+  // The spacing sets the tolerances: one far from the cells' size would pass anything.
+  m = good;
+  m.spacing = 1e6;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)).rfind("spacing: 1000000 m, far from", 0), 0u);
+  m = good;
+  m.spacing = -0.01;
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), "spacing: -0.01 m is negative");
+  // The box the loadings place their layers and sources in must hold the centroids.
+  m = good;
+  m.bounds = {0.0, 0.0, 0.03, 0.04};
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)).rfind("bounds: cell ", 0), 0u);
+  m = good;
+  m.bounds = {0.0, 0.05, 0.06, 0.04};
+  EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)).rfind("bounds: box", 0), 0u);
+}
+
+TEST(MeshCheck, SurvivesAnyOffsetsAndCounts) {
+  // Offsets of any value, counts of any size: no overflow, no index out of range, a failure each.
+  const auto good = frac::mesh::make_random_lattice(rect(3, 3, 0.03, 0.03, 1.0, 2));
+  for (const std::int64_t bad : {std::numeric_limits<std::int64_t>::min(), std::int64_t{-1}, std::int64_t{1},
+                                 std::numeric_limits<std::int64_t>::max()}) {
+    for (const std::size_t k : {std::size_t{1}, std::size_t{4}, good.vertex_offset.size() - 1}) {
+      auto m = good;
+      m.vertex_offset[k] = bad;
+      const auto r = frac::mesh::check_cell_mesh(m);
+      ASSERT_FALSE(r.ok()) << bad << " at " << k;
+      EXPECT_EQ(r.failures[0].rfind("arrays: ", 0), 0u) << r.failures[0];
+    }
+  }
+  TriangularLatticeOptions o;
+  o.nx = 5, o.ny = 4, o.spacing = 1e-3;
+  const auto nodes = frac::mesh::make_triangular_lattice(o);
+  auto n = nodes;
+  n.nx = std::int64_t{1} << 62, n.ny = 4;  // nx * ny wraps to 0 in 64 bits
+  EXPECT_EQ(first_failure(frac::mesh::check_node_mesh(n)), "nodes: 20 positions but nx * ny = 4611686018427387904 * 4");
+  n = nodes;
+  n.nx = -5;
+  EXPECT_EQ(first_failure(frac::mesh::check_node_mesh(n)).rfind("nodes: nx = -5", 0), 0u);
+}
+
+TEST(MeshCheck, NodeMeshFaultsNamedFiniteFirst) {
+  TriangularLatticeOptions o;
+  o.nx = 6, o.ny = 5, o.spacing = 1e-3;
+  const auto good = frac::mesh::make_triangular_lattice(o);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto m = good;
+  m.position[7].x() = nan;  // (the lattice builder would have called a bond of node 7 a duplicate)
+  EXPECT_EQ(first_failure(frac::mesh::check_node_mesh(m)), "finite: node 7: position is not finite");
+  m = good;
+  m.bond_length[2] = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_node_mesh(m)), "finite: bond 2: length is not finite");
+  m = good;
+  m.spacing = nan;
+  EXPECT_EQ(first_failure(frac::mesh::check_node_mesh(m)), "finite: attribute spacing is not finite");
+  m = good;  // two nodes on one point, their bond of length 0: passes the distance test, not this one
+  m.spacing = 0;
+  m.position[1] = m.position[0];
+  m.bond_length[0] = 0;
+  EXPECT_NE(first_failure(frac::mesh::check_node_mesh(m)).find("0 m is not positive"), std::string::npos)
+      << first_failure(frac::mesh::check_node_mesh(m));
+  m = good;
+  m.bond[3][1] = m.bond[3][0];
+  EXPECT_NE(first_failure(frac::mesh::check_node_mesh(m)).find("joins a node to itself"), std::string::npos);
+  m = good;
+  m.rows_along = "z";
+  EXPECT_EQ(first_failure(frac::mesh::check_node_mesh(m)), "rows_along: 'z': expected x or y");
 }
 
 // ---------------------------------------------------------------------------------------------
