@@ -187,6 +187,10 @@ std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport*
   const std::string kind = check_header(root, {"mesh", "run"});
   const bool run = kind == "run";
   const bool cells = mesh_kind(root) == MeshKind::cells;
+  // The mesh validated as every tool reads it: no sidecar for a mesh no tool may run on.
+  std::optional<mesh::CellMesh> cell_mesh;
+  if (cells) cell_mesh = read_cell_mesh(root);
+  else read_node_mesh(root);
   const std::string body_group = cells ? "particles/cells" : "particles/nodes";
   const std::string link_group = cells ? "connectivity/beams" : "connectivity/bonds";
   const std::string body_name = cells ? "cells" : "nodes", link_name = cells ? "beams" : "bonds";
@@ -283,7 +287,7 @@ std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport*
                           std::to_string(opt.inline_vertex_limit) + " (--polygons on writes them anyway)");
   }
   if (polygons) {
-    const mesh::CellMesh m = read_cell_mesh(root);
+    const mesh::CellMesh& m = *cell_mesh;
     std::string topo, geom;
     std::size_t length = 0;
     for (std::size_t k = 0; k < m.cells(); ++k) {

@@ -52,7 +52,8 @@ struct XdmfReport {
   std::vector<std::string> notes;                 // what was left out, and why
 };
 
-// The XDMF document for a mesh or run file (InputError naming the file when it is neither).
+// The XDMF document for a mesh or run file (InputError naming the file when it is neither, or when its
+// mesh fails an invariant of mesh/check.hpp).
 std::string xdmf_document(const Group& root, const XdmfOptions& options, XdmfReport* report = nullptr);
 
 // `target` as a path relative to the folder of `from_file` ("-": the current folder), for references
