@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -54,6 +55,32 @@ void add_common(po::options_description& desc, CommonOptions& common, unsigned w
 
 namespace {
 
+// What Boost's parsers let through: "-1" for an unsigned option (it wraps to 2^64 - 1) and "nan" or "inf"
+// for a floating-point one. `prefix` starts the message ("--config FILE: ").
+void check_values(const po::parsed_options& parsed, const po::options_description& desc, const std::string& prefix) {
+  for (const auto& o : parsed.options) {
+    if (o.unregistered || o.string_key.empty()) continue;
+    const po::option_description* d = desc.find_nothrow(o.string_key, false);
+    if (!d) continue;
+    const po::value_semantic* v = d->semantic().get();
+    const bool is_unsigned = dynamic_cast<const po::typed_value<unsigned>*>(v) ||
+                             dynamic_cast<const po::typed_value<unsigned long>*>(v) ||
+                             dynamic_cast<const po::typed_value<unsigned long long>*>(v);
+    const bool is_double = dynamic_cast<const po::typed_value<double>*>(v) != nullptr;
+    for (const auto& token : o.value) {
+      const auto first = token.find_first_not_of(" \t");
+      if (is_unsigned && first != std::string::npos && token[first] == '-')
+        throw UsageError(prefix + "--" + o.string_key + ": must not be negative, got '" + token + "'");
+      if (is_double) {
+        char* end = nullptr;
+        const double x = std::strtod(token.c_str(), &end);
+        if (end != token.c_str() && !std::isfinite(x))
+          throw UsageError(prefix + "--" + o.string_key + ": must be a finite number, got '" + token + "'");
+      }
+    }
+  }
+}
+
 // Stores the options of a --config file in vm; its scene keys go to the front of `scene_overrides`
 // (when given; else they are unknown options).
 void store_config(const std::string& path, po::options_description& desc, po::variables_map& vm,
@@ -62,6 +89,7 @@ void store_config(const std::string& path, po::options_description& desc, po::va
   if (!in) throw UsageError("--config: cannot read '" + path + "'");
   try {
     const auto parsed = po::parse_config_file(in, desc, scene_overrides != nullptr);
+    check_values(parsed, desc, "--config " + path + ": ");
     std::vector<std::pair<std::string, std::string>> scene_keys;
     for (const auto& o : parsed.options) {
       if (!o.unregistered) continue;
@@ -89,7 +117,9 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
   po::variables_map vm;
   try {
     try {
-      po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+      const auto parsed = po::command_line_parser(argc, argv).options(all).positional(positional).run();
+      check_values(parsed, all, "");
+      po::store(parsed, vm);
     } catch (const po::too_many_positional_options_error&) {
       // Name the arguments that are not options: the extra input, or the value of an option that
       // lost its own (a missing value makes the next option's value look like an input).
@@ -112,6 +142,18 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
     }
     if (vm.count("config")) store_config(vm["config"].as<std::string>(), desc, vm, scene_overrides);
     po::notify(vm);
+  } catch (const po::invalid_command_line_syntax& e) {
+    // Boost's "the required argument for option '--steps' is missing": say which, first.
+    if (e.kind() == po::invalid_syntax::missing_parameter) throw UsageError(e.get_option_name() + ": missing value");
+    throw UsageError(e.what());
+  } catch (const po::required_option& e) {
+    // A positional argument is "required" under a name the command line never shows ("--input").
+    const std::string& option = e.get_option_name();
+    const std::string name = option.substr(std::min(option.size(), option.find_first_not_of('-')));
+    for (unsigned k = 0; k < positional.max_total_count() && k < 16; ++k)
+      if (positional.name_for_position(k) == name)
+        throw UsageError("no " + name + " given (usage: " + spec.name + " " + spec.usage + ")");
+    throw UsageError(e.get_option_name() + ": missing (required)");
   } catch (const po::error& e) {
     throw UsageError(e.what());
   }

@@ -2,6 +2,10 @@
 
 #include <omp.h>
 
+#include <string>
+#include <system_error>
+
+#include "core/error.hpp"
 #include "core/float_mode.hpp"
 
 namespace frac {
@@ -66,7 +70,11 @@ void set_threads(int requested) {
   // team's for milliseconds.)
   flush_subnormals_to_zero();
   ThreadTeam::shared().resize(1, 1);
-  ThreadTeam::shared().resize(static_cast<unsigned>(threads), processor_count());
+  try {
+    ThreadTeam::shared().resize(static_cast<unsigned>(threads), processor_count());
+  } catch (const std::system_error& e) {  // (the system's limit on threads, or on memory for their stacks)
+    throw RuntimeError("--threads " + std::to_string(threads) + ": cannot start that many threads (" + e.what() + ")");
+  }
 }
 
 }  // namespace frac
