@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     set_threads(common.threads);
 
     Scene scene = Scene::load(scene_path, overrides);
+    dem::require_run_keys(scene);
     const dem::DemScene resolved = dem::read_dem_scene(scene);
     scene.check_all_used();
 

@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
       throw InputError(input + ": holds polygon cells; rubber-run needs a node mesh (mesh-gen triangular)");
     const mesh::NodeMesh mesh = io::read_node_mesh(in);
 
+    rubber::require_run_keys(scene);
     const rubber::RubberScene resolved = rubber::read_rubber_scene(scene, mesh);
     scene.check_all_used();
     const rubber::RubberSetup setup = rubber::prepare_rubber(resolved, mesh);

@@ -112,6 +112,21 @@ double Scene::non_negative(std::string_view key, double fallback) {
   return x;
 }
 
+double Scene::in(std::string_view key, double fallback, const Interval& range) {
+  const double x = number(key, fallback);
+  if (!range.contains(x)) {
+    const std::string* given = find(key);  // as written: 1e300, not 1.0000000000000001e+300
+    const bool sign = range.lo == 0 && !(range.lo_open ? x > 0 : x >= 0);  // the messages of positive(), non_negative()
+    bad(key, given ? *given : resolved_[std::string(key)],
+        sign ? (range.lo_open ? "must be positive" : "must not be negative") : "must lie in " + range.text());
+  }
+  return x;
+}
+
+void Scene::require(std::string_view key, const std::string& what) const {
+  if (!has(key)) throw UsageError(name_ + ": " + std::string(key) + " is required (" + what + ")");
+}
+
 long long Scene::integer(std::string_view key, long long fallback) {
   long long x = fallback;
   if (const std::string* v = find(key)) {

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/option_check.hpp"
+
 namespace frac {
 
 class Scene {
@@ -31,11 +33,16 @@ class Scene {
   double number(std::string_view key);  // required
   double positive(std::string_view key, double fallback);     // > 0
   double non_negative(std::string_view key, double fallback);  // >= 0
+  double in(std::string_view key, double fallback, const Interval& range);  // finite, in `range`
   long long integer(std::string_view key, long long fallback);
   bool flag(std::string_view key, bool fallback);  // on|off|true|false|yes|no|1|0
   std::string text(std::string_view key, const std::string& fallback);
   // One of `choices`.
   std::string choice(std::string_view key, const std::string& fallback, const std::vector<std::string>& choices);
+
+  // UsageError naming the scene unless `key` is given (in the file or as an override); `what` says what
+  // it decides ("what the run does").
+  void require(std::string_view key, const std::string& what) const;
 
   // Every key read so far with its resolved value (text), sorted.
   std::vector<std::pair<std::string, std::string>> resolved() const;

@@ -1,9 +1,12 @@
 #include "dem/loading.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/option_check.hpp"
+#include "core/physical_limits.hpp"
 #include "geometry/polygon.hpp"
 
 namespace frac::dem {
@@ -138,6 +141,14 @@ LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, M
   const double g = bodies.length_scale;
   const double depth = loading.layer_depth > 0 ? loading.layer_depth : g;
   const auto& b = mesh.bounds;
+  const double width = b[2] - b[0], height = b[3] - b[1];
+  if (loading.layer_depth > 0 && !(2 * loading.layer_depth < std::min(width, height)))
+    throw UsageError("loading.layer_depth = " + format_value(loading.layer_depth) +
+                     " m: the boundary layers would meet (the sample is " + format_value(width) + " x " +
+                     format_value(height) + " m)");
+  if (loading.kind == LoadingKind::impact && !(loading.impact_width <= width))
+    throw UsageError("loading.impact_width = " + format_value(loading.impact_width) +
+                     " m: wider than the sample (" + format_value(width) + " m)");
   switch (loading.kind) {
     case LoadingKind::none: break;
     case LoadingKind::uniaxial:
@@ -183,6 +194,22 @@ LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, M
     case LoadingKind::explosion:
     case LoadingKind::pulse: setup = explosion_kick(loading, mesh, bodies, v0); break;
     case LoadingKind::impact: setup = impact_kick(loading, mesh, bodies, v0, depth); break;
+  }
+  // An energy far beyond the sample's (a typo, a unit slip) kicks cells faster than any solid stays one.
+  double fastest = 0;
+  std::size_t cell = n;
+  for (std::size_t k : setup.kicked) {
+    const double v = std::hypot(v0[k], v0[n + k]);
+    if (!(v <= fastest)) fastest = v, cell = k;
+  }
+  if (!(fastest <= limits::kSpeed)) {
+    const bool impact = loading.kind == LoadingKind::impact;
+    const char* key = !impact ? "loading.energy" : loading.impact_energy > 0 ? "loading.impact_energy" : "loading.impact_speed";
+    const double value = !impact ? loading.energy : loading.impact_energy > 0 ? loading.impact_energy : loading.impact_speed;
+    const char* unit = impact && loading.impact_energy <= 0 ? " m/s" : " J";
+    throw UsageError(std::string(key) + " = " + format_value(value) + unit + ": kicks cell " + std::to_string(cell) + " to " +
+                     format_value(fastest) + " m/s, above the " + format_value(limits::kSpeed) +
+                     " m/s any solid of this model survives as one");
   }
   return setup;
 }

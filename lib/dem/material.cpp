@@ -3,21 +3,23 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "core/physical_limits.hpp"
 
 namespace frac::dem {
 
 Material read_material(Scene& s) {
+  using limits::kDensity, limits::kModulus, limits::kRate, limits::kThickness;
   Material m;
-  m.density = s.positive("material.density", m.density);
-  m.thickness = s.positive("material.thickness", m.thickness);
-  m.grain_modulus = s.non_negative("material.grain_modulus", m.grain_modulus);
-  m.beam_modulus = s.non_negative("material.beam_modulus", m.beam_modulus);
-  m.shear_ratio = s.positive("material.shear_ratio", m.shear_ratio);
-  m.t_eps = s.positive("material.t_eps", m.t_eps);
+  m.density = s.in("material.density", m.density, Interval::open_closed(0, kDensity));
+  m.thickness = s.in("material.thickness", m.thickness, Interval::open_closed(0, kThickness));
+  m.grain_modulus = s.in("material.grain_modulus", m.grain_modulus, Interval::closed(0, kModulus));
+  m.beam_modulus = s.in("material.beam_modulus", m.beam_modulus, Interval::closed(0, kModulus));
+  m.shear_ratio = s.in("material.shear_ratio", m.shear_ratio, Interval::open_closed(0, 1e3));
+  m.t_eps = s.positive("material.t_eps", m.t_eps);  // (thresholds may be out of reach: 1e300 is never-break)
   m.t_theta = s.positive("material.t_theta_deg", 4.0) * std::numbers::pi / 180.0;
-  m.friction = s.non_negative("material.friction", m.friction);
-  m.gamma_n = s.non_negative("material.gamma_n", m.gamma_n);
-  m.gamma_t = s.non_negative("material.gamma_t", m.gamma_t);
+  m.friction = s.in("material.friction", m.friction, Interval::closed(0, 1e3));
+  m.gamma_n = s.in("material.gamma_n", m.gamma_n, Interval::closed(0, kRate));
+  m.gamma_t = s.in("material.gamma_t", m.gamma_t, Interval::closed(0, kRate));
   return m;
 }
 

@@ -1,5 +1,6 @@
 #include "dem/run.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -155,7 +156,14 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     if (step % scene.output.observe_every == 0 || !reason.empty()) observe(step);
     if (t >= next_frame * (1 - 1e-12) || !reason.empty()) {
       write_frame(step);
-      while (next_frame <= t * (1 + 1e-12)) next_frame += scene.output.frame_interval;
+      // An interval shorter than a step: one frame a step, the frames passed over skipped at once (not
+      // one by one: 1e-300 s would loop for ever).
+      const double fi = scene.output.frame_interval, now = t * (1 + 1e-12);
+      next_frame += std::max(0.0, std::floor((now - next_frame) / fi)) * fi;  // (0 for an interval of a step or more)
+      while (next_frame <= now) {
+        const double after = next_frame + fi;
+        next_frame = after > next_frame ? after : t * (1 + 2e-12);
+      }
     }
     progress.tick([&] {
       std::ostringstream s;

@@ -63,6 +63,11 @@ struct DemScene {
   OutputPlan output;
 };
 
+// UsageError naming the key and its range for a value out of range (speeds, moduli, densities, rates
+// beyond core/physical_limits.hpp are refused as absurd).
 DemScene read_dem_scene(Scene& scene);
+// The keys a scene for a run must give itself: loading.kind (an empty or stray scene would run on
+// defaults alone, doing nothing).
+void require_run_keys(const Scene& scene);
 
 }  // namespace frac::dem

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "core/error.hpp"
+#include "core/physical_limits.hpp"
 
 namespace frac::rubber {
 namespace {
@@ -27,14 +28,26 @@ std::string len(double x, double spacing) { return num(x, 5) + " m (" + num(x / 
 
 }  // namespace
 
+void require_run_keys(const Scene& s) { s.require("loading.kind", "what the run does: stretch or wave"); }
+
 RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   RubberScene r;
   const double d = mesh.spacing;
   if (!(d > 0)) throw InputError("the mesh has no lattice spacing");
-  r.density = s.positive("material.density", r.density);
-  r.thickness = s.positive("material.thickness", r.thickness);
-  r.a = s.positive("material.a", r.a);
-  r.b = s.non_negative("material.b", r.b);
+  using limits::kSpeed, limits::kStretch;
+  // The sheet's extent, for lengths that must fit on it.
+  double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
+  for (std::size_t i = 0; i < mesh.position.size(); ++i) {
+    const auto& p = mesh.position[i];
+    xmin = i ? std::min(xmin, p.x()) : p.x(), xmax = i ? std::max(xmax, p.x()) : p.x();
+    ymin = i ? std::min(ymin, p.y()) : p.y(), ymax = i ? std::max(ymax, p.y()) : p.y();
+  }
+  const double length = xmax - xmin, size = std::max(length, ymax - ymin);
+  const Interval on_sheet = Interval::closed(0, size), law_length = Interval::open_closed(0, 1e3 * d);
+  r.density = s.in("material.density", r.density, Interval::open_closed(0, limits::kDensity));
+  r.thickness = s.in("material.thickness", r.thickness, Interval::open_closed(0, limits::kThickness));
+  r.a = s.in("material.a", r.a, Interval::open_closed(0, kSpeed * kSpeed));  // a = c^2
+  r.b = s.in("material.b", r.b, Interval::closed(0, 1e3));
   const double tau = d / std::sqrt(r.a);  // the natural time unit Δ/√a
 
   r.pair = s.choice("law.pair", r.pair, pair_law_names());
@@ -46,9 +59,9 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
     throw UsageError(s.name() + ": law.three_body_residual must lie in [0, 1) (the fraction of the far-field three-body "
                      "energy a failed pair keeps)");
   r.failure = s.choice("law.failure", r.failure, {"paper", "freeze"});
-  r.short_width = s.positive("law.short_width", 0.1 * d);
-  r.cutoff_length = s.positive("law.cutoff_length", 3.5 * d);
-  r.cutoff_width = s.positive("law.cutoff_width", 0.05 * d);
+  r.short_width = s.in("law.short_width", 0.1 * d, law_length);
+  r.cutoff_length = s.in("law.cutoff_length", 3.5 * d, law_length);
+  r.cutoff_width = s.in("law.cutoff_width", 0.05 * d, law_length);
   if (!(r.cutoff_length > d + r.short_width))
     throw UsageError(s.name() + ": law.cutoff_length = " + num(r.cutoff_length) + " m must exceed the spacing plus " +
                      "law.short_width (" + num(d + r.short_width) + " m)");
@@ -72,8 +85,8 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   if (r.toughening_every <= 0) throw UsageError(s.name() + ": toughening.every must be positive");
 
   r.kind = s.choice("loading.kind", r.kind, {"stretch", "wave"});
-  r.stretch_x = s.positive("loading.stretch_x", r.stretch_x);
-  r.stretch_y = s.positive("loading.stretch_y", r.stretch_y);
+  r.stretch_x = s.in("loading.stretch_x", r.stretch_x, Interval::open_closed(0, kStretch));
+  r.stretch_y = s.in("loading.stretch_y", r.stretch_y, Interval::open_closed(0, kStretch));
 
   r.clamp_rows = s.integer("boundary.clamp_rows", r.kind == "stretch" ? 2 : 0);
   r.clamp_columns = s.integer("boundary.clamp_columns", 0);
@@ -94,30 +107,30 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   // Stretching with the seed in place: the sheet starts at (λx, ramp_from_y), the whole sheet moving at the
   // homogeneous stretch rate, and the clamped rows reach stretch_y at ramp_time, then stay.
   r.ramp_time = s.non_negative("loading.ramp_time", 0.0);
-  r.ramp_from_y = s.positive("loading.ramp_from_y", r.stretch_y);
+  r.ramp_from_y = s.in("loading.ramp_from_y", r.stretch_y, Interval::open_closed(0, kStretch));
   if (r.ramp_time > 0 && (r.clamp_rows == 0 || r.periodic_y))
     throw UsageError(s.name() + ": loading.ramp_time needs clamped top and bottom rows (boundary.clamp_rows)");
 
-  r.seed_length = s.non_negative("crack.seed_length", 0.0);
-  r.tip_kick = s.non_negative("crack.tip_kick", 0.0);
+  r.seed_length = s.non_negative("crack.seed_length", 0.0);  // (no longer than the crack line: build_rubber)
+  r.tip_kick = s.in("crack.tip_kick", 0.0, Interval::closed(0, kSpeed));
   r.path_cutoff_ratio = s.positive("crack.path_cutoff_ratio", r.path_cutoff_ratio);
   if (r.path_cutoff_ratio < 1)
     throw UsageError(s.name() + ": crack.path_cutoff_ratio = " + num(r.path_cutoff_ratio) +
                      " must be at least 1 (the bulk's cut-off over the crack path's: the path is the weak plane)");
-  r.drive_speed = s.non_negative("crack.drive_speed", 0.0);
-  r.drive_length = s.non_negative("crack.drive_length", 0.0);
+  r.drive_speed = s.in("crack.drive_speed", 0.0, Interval::closed(0, kSpeed));
+  r.drive_length = s.in("crack.drive_length", 0.0, Interval::closed(0, length));
   if ((r.drive_speed > 0) != (r.drive_length > 0))
     throw UsageError(s.name() + ": crack.drive_speed and crack.drive_length go together (both positive: the driven "
                      "seed; both 0: off)");
 
   r.pulse_kind = s.choice("pulse.kind", r.pulse_kind, {"longitudinal", "shear"});
   r.pulse_direction = s.choice("pulse.direction", r.pulse_direction, {"x", "y"});
-  r.pulse_amplitude = s.non_negative("pulse.amplitude", r.kind == "wave" ? 0.01 * d : 0.0);
+  r.pulse_amplitude = s.in("pulse.amplitude", r.kind == "wave" ? 0.01 * d : 0.0, on_sheet);
   r.pulse_width = s.positive("pulse.width", 10 * d);
   r.pulse_position = s.number("pulse.position", 0.5);
   if (r.pulse_position < 0 || r.pulse_position > 1) throw UsageError(s.name() + ": pulse.position must lie in [0, 1]");
 
-  r.noise = s.non_negative("initial.noise", 0.0);
+  r.noise = s.in("initial.noise", 0.0, Interval::closed(0, kSpeed));
 
   r.integrator = dynamics::parse_integrator_kind(s.text("integrator.kind", "verlet"), "integrator.kind");
   if (s.text("integrator.dt", "auto") != "auto") r.dt = s.positive("integrator.dt", 0);

@@ -73,8 +73,11 @@ struct RubberScene {
   int threads = 1;          // not a scene key: --threads
 };
 
-// Reads the scene for this mesh; UsageError naming the key for a bad value.
+// Reads the scene for this mesh; UsageError naming the key for a bad value: out of its range, beyond
+// core/physical_limits.hpp, or a length that does not fit on the sheet (a crack seed longer than it).
 RubberScene read_rubber_scene(Scene& scene, const mesh::NodeMesh& mesh);
+// The keys a scene for a run must give itself: loading.kind.
+void require_run_keys(const Scene& scene);
 
 struct RubberSetup {
   RubberScene scene;
