@@ -25,7 +25,7 @@ double parse_bound(const std::string& text, const std::string& option) {
   try {
     std::size_t used = 0;
     const double v = std::stod(text, &used);
-    if (used == text.size()) return v;
+    if (used == text.size() && !std::isnan(v)) return v;
   } catch (const std::logic_error&) {
   }
   throw UsageError(option + ": expected a number, got '" + text + "'");
@@ -128,9 +128,7 @@ int run(int argc, char** argv) {
   if (input_format != "auto" && input_format != "hdf5" && input_format != "text")
     throw UsageError("--input-format: expected auto, hdf5 or text, got '" + input_format + "'");
   if (format != "hdf5" && format != "text") throw UsageError("--format: expected hdf5 or text, got '" + format + "'");
-  cli::check_threads(opt.threads, "--threads");
-  if (!(opt.significance > 0 && opt.significance < 1))
-    throw UsageError("--significance: must lie strictly between 0 and 1, got " + std::to_string(opt.significance));
+  analysis::check_fit_options(opt);  // before any input is read
   if (ks == "two-sided") opt.scan.ks = analysis::KsConvention::two_sided;
   else if (ks == "powerlaw-r") opt.scan.ks = analysis::KsConvention::powerlaw_r;
   else throw UsageError("--ks: expected two-sided or powerlaw-r, got '" + ks + "'");

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 
 namespace frac::analysis {
 
@@ -19,17 +21,33 @@ const EstimatorResult* FitReport::find(const std::string& name) const {
   return nullptr;
 }
 
-FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, const std::string& what) {
+void check_fit_options(const FitOptions& opt) {
   if (opt.model != "auto" && opt.model != "continuous" && opt.model != "discrete")
     throw UsageError("--model: expected auto, continuous or discrete, got '" + opt.model + "'");
-  if (opt.bootstrap < 0) throw UsageError("--bootstrap: must be >= 0");
-  if (opt.gof_samples < 0) throw UsageError("--gof-samples: must be >= 0");
+  // Resamples beyond a million would run for days; p-values are good to 0.01 with 2500.
+  if (opt.bootstrap < 0 || opt.bootstrap > 1000000)
+    throw UsageError("--bootstrap: must lie in [0, 1000000], got " + std::to_string(opt.bootstrap));
+  if (opt.gof_samples < 0 || opt.gof_samples > 1000000)
+    throw UsageError("--gof-samples: must lie in [0, 1000000], got " + std::to_string(opt.gof_samples));
   if (opt.scan.min_tail < 2) throw UsageError("--min-tail: must be >= 2");
-  if (!(opt.bins_per_decade > 0)) throw UsageError("--bins-per-decade: must be > 0");
+  check_in(opt.significance, "--significance", Interval::open(0, 1));
+  check_in(opt.bins_per_decade, "--bins-per-decade", Interval::open_closed(0, 1000));
+  cli::check_threads(opt.threads > 1u << 30 ? -1 : static_cast<int>(opt.threads), "--threads");
   if (!(opt.cell_mass >= 0) || !std::isfinite(opt.cell_mass)) throw UsageError("--cell-mass: must be >= 0");
   if (!(opt.scan.xmax > 0)) throw UsageError("--xmax: must be > 0");
-  if (std::isfinite(opt.scan.xmin) && !(opt.scan.xmin > 0)) throw UsageError("--xmin: must be > 0");
+  if (!std::isnan(opt.scan.xmin) && !(opt.scan.xmin > 0 && std::isfinite(opt.scan.xmin)))
+    throw UsageError("--xmin: must be a positive number");
   if (std::isfinite(opt.scan.xmin) && !(opt.scan.xmin < opt.scan.xmax)) throw UsageError("--xmin must be below --xmax");
+  // (logbin_min: NaN stands for the primary fit's x_min; logbin_max: infinity for no upper end)
+  if (!std::isnan(opt.logbin_min) && !(opt.logbin_min >= 0 && std::isfinite(opt.logbin_min)))
+    throw UsageError("--logbin-min: must be xmin, all or a number >= 0, got " + format_value(opt.logbin_min));
+  if (!(opt.logbin_max > 0)) throw UsageError("--logbin-max: must be inf or a positive number, got " + format_value(opt.logbin_max));
+  if (!(opt.logbin_min < opt.logbin_max) && !std::isnan(opt.logbin_min))
+    throw UsageError("--logbin-min must be below --logbin-max");
+}
+
+FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, const std::string& what) {
+  check_fit_options(opt);
 
   validate_values(values, what);
   FitReport r;

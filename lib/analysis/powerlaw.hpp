@@ -66,6 +66,10 @@ struct FitReport {
   const EstimatorResult* find(const std::string& name) const;
 };
 
+// UsageError naming the option for a value out of range (significance outside (0, 1), threads beyond
+// cli::check_threads, more than 10^6 resamples, NaN bounds, ...).
+void check_fit_options(const FitOptions& opt);
+
 // Runs every estimator. Throws InputError (naming `what`) for values a power law cannot take
 // (see validate_values), for non-integer values with model = discrete, and when the primary fit finds no
 // x_min candidate; UsageError for inconsistent options.

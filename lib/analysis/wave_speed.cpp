@@ -185,8 +185,8 @@ WaveMeasurement measure_wave_speeds(const io::Group& run, const FrontOptions& op
   if (opt.directions.empty()) throw UsageError("--direction: no propagation direction given");
   if (!(opt.threshold > 0 && opt.threshold < 1))
     throw UsageError("--threshold: the arrival level is a fraction of the amplitude in (0, 1), got " + number(opt.threshold));
-  if (opt.amplitude == AmplitudeRef::absolute && !(opt.amplitude_value > 0))
-    throw UsageError("--amplitude: an absolute amplitude must be positive");
+  if (opt.amplitude == AmplitudeRef::absolute && !(opt.amplitude_value > 0 && std::isfinite(opt.amplitude_value)))
+    throw UsageError("--amplitude: an absolute amplitude must be a positive number");
   if (!(opt.floor >= 0 && opt.floor < 1)) throw UsageError("--floor: expected a fraction in [0, 1)");
   if (!(opt.bin >= 0)) throw UsageError("--bin: the bin width must be positive (0: automatic)");
   if (!(opt.lateral >= 0)) throw UsageError("--lateral: the half-width must be positive (0: no limit)");

@@ -60,7 +60,7 @@ CASES
     expect_refusal "--seed: must be a whole number" "$bin/mesh-gen" voronoi --cells 8x4 --seed 99999999999999999999 -o out.h5
     expect_refusal "--threads: must lie in [0," "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --threads 100000 -o out.h5
     expect_refusal "--threads: must not be negative, got '-1'" "$bin/powerlaw-fit" values.txt --threads -1 --format text
-    expect_refusal "--significance: must lie strictly between 0 and 1" "$bin/powerlaw-fit" values.txt --significance 2
+    expect_refusal "--significance: must lie in (0, 1), got 2" "$bin/powerlaw-fit" values.txt --significance 2
     expect_refusal "--polygon-limit: must not be negative" "$bin/h5-xdmf" run.h5 --polygon-limit -5 -o out.xmf
     expect_refusal "empty.ini: the scene file sets no keys" "$bin/dem-run" --scene empty.ini mesh.h5 -o out.h5
     expect_refusal "loading.energy = 1e+300 J: kicks cell" \
