@@ -1,6 +1,7 @@
 // Writes HDF5 files that the tools must refuse: a file of ours holding no mesh, a mesh file of an
-// unknown format version, and meshes that break one invariant of mesh-gen check each (bad-*.h5, cell
-// meshes of an 8x4 block; bad-node-*.h5, node meshes). Used by the end-to-end bad-input tests.
+// unknown format version, meshes that break one invariant of mesh-gen check each (bad-*.h5, cell
+// meshes of an 8x4 block; bad-node-*.h5, node meshes), and run files whose mesh breaks one
+// (bad-run-*.h5). Used by the end-to-end bad-input tests.
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
+#include "io/run_io.hpp"
 #include "mesh/random_lattice.hpp"
 #include "mesh/triangular_lattice.hpp"
 
@@ -61,6 +63,11 @@ int main(int argc, char** argv) {
   cells("nan-beam", [&](CellMesh& m) { m.beam_length[4] = nan; });
   cells("self-beam", [](CellMesh& m) { m.beam[4][1] = m.beam[4][0]; });
   cells("negative-area", [](CellMesh& m) { m.area[6] = -m.area[6]; });
+  cells("nan-area", [&](CellMesh& m) { m.area[5] = nan; });
+  cells("inf-spacing", [](CellMesh& m) { m.spacing = std::numeric_limits<double>::infinity(); });
+  cells("huge-spacing", [](CellMesh& m) { m.spacing = 1e6; });  // would make every tolerance 1e-2 m
+  cells("outside-box", [](CellMesh& m) { m.bounds[2] = 0.04; });  // the right half's centroids outside
+  cells("offset-overflow", [](CellMesh& m) { m.vertex_offset[3] = std::numeric_limits<std::int64_t>::max(); });
   cells("short-centroid", [](CellMesh&) {}, [](frac::io::Group& root) {
     const auto c = root.read<double>("particles/cells/centroid");
     H5Ldelete(root.id(), "particles/cells/centroid", H5P_DEFAULT);
@@ -82,5 +89,48 @@ int main(int argc, char** argv) {
   nodes("nan", [&](NodeMesh& m) { m.position[7].x() = nan; });
   nodes("bond-length", [](NodeMesh& m) { m.bond_length[3] *= 2; });
   nodes("duplicate-bond", [](NodeMesh& m) { m.bond[4] = m.bond[3]; });
+  nodes("nan-spacing", [&](NodeMesh& m) { m.spacing = nan; });
+  nodes("overflow", [](NodeMesh& m) { m.nx = std::int64_t{1} << 62, m.ny = 4; });  // nx * ny wraps to 0
+
+  // Run files holding a mesh with one NaN (an area, a node): every reader of runs refuses them.
+  {
+    CellMesh m = good;
+    m.area[5] = nan;
+    const std::size_t n = m.cells(), b = m.beams();
+    const std::vector<double> mass(n, 1e-3), inertia(n, 1e-8);
+    frac::io::OutputFile out(dir + "/bad-run-nan-area.h5");
+    frac::io::write_header(out.root(), "run", frac::start_run("dem-run", "dem-run"), out.uuid());
+    frac::io::RunWriter writer(out.root(), m, mass, inertia);
+    frac::io::BodyFrame f;
+    for (const auto& c : m.centroid) f.position.insert(f.position.end(), {c.x(), c.y()});
+    f.velocity.assign(2 * n, 0.0), f.angle.assign(n, 0.0), f.angular_velocity.assign(n, 0.0);
+    f.intact.assign(b, 1), f.strain.assign(b, 0.0);
+    for (int k = 0; k < 3; ++k) {
+      f.step = k, f.time = 1e-6 * k;
+      writer.write_frame(f);
+    }
+    writer.finish();
+    out.commit();
+  }
+  {
+    NodeMesh m = frac::mesh::make_triangular_lattice({10, 6, 1e-3, "x", 0.0});
+    m.position[7].y() = nan;
+    const std::size_t n = m.nodes(), b = m.bonds();
+    frac::ToolRun rubber = frac::start_run("rubber-run", "rubber-run");
+    rubber.parameters = {{"loading.stretch_x", "1"}, {"loading.stretch_y", "1"}, {"boundary.clamp_rows", "0"},
+                         {"material.a", "1600"}, {"material.b", "1.5"}};
+    frac::io::OutputFile out(dir + "/bad-run-node-nan.h5");
+    frac::io::write_header(out.root(), "run", rubber, out.uuid());
+    frac::io::RunWriter writer(out.root(), m, std::vector<double>(n, 1e-6));
+    frac::io::BodyFrame f;
+    for (const auto& p : m.position) f.position.insert(f.position.end(), {p.x(), p.y()});
+    f.velocity.assign(2 * n, 0.0), f.intact.assign(b, 1), f.strain.assign(b, 0.0);
+    for (int k = 0; k < 3; ++k) {
+      f.step = k, f.time = 1e-6 * k;
+      writer.write_frame(f);
+    }
+    writer.finish();
+    out.commit();
+  }
   return 0;
 }

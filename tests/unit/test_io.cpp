@@ -13,6 +13,7 @@
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
 #include "io/series.hpp"
+#include "mesh/triangular_lattice.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;
@@ -313,6 +314,52 @@ TEST(Io, ReadingChecksShapesAndNamesTheDataset) {
     FAIL() << "accepted an area dataset of the wrong length";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/particles/cells/area"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Io, ReadersEnforceTheMeshInvariantsNamingTheFileAndCell) {
+  const auto dir = temp_dir("invariants");
+  const auto path = (dir / "m.h5").string();
+  {
+    auto m = two_squares();
+    m.second_moment[1] = std::nan("");  // would pass every "differs by more than" test
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::write_mesh(out.root(), m);
+    out.commit();
+  }
+  const io::Group root = io::open_input(path);
+  try {
+    io::read_cell_mesh(root);
+    FAIL() << "accepted a NaN second moment";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": invalid mesh: finite: cell 1: second_moment is not finite");
+  }
+  // mesh-gen check's path: the mesh as stored, for its full report.
+  EXPECT_TRUE(std::isnan(io::read_cell_mesh_as_stored(root).second_moment[1]));
+  fs::remove_all(dir);
+}
+
+TEST(Io, NodeCountsFromTheFileCannotOverflow) {
+  const auto dir = temp_dir("overflow");
+  const auto path = (dir / "n.h5").string();
+  {
+    auto m = mesh::make_triangular_lattice({4, 3, 1e-3, "x", 0.0});
+    m.nx = std::int64_t{1} << 62;  // times ny = 4 wraps to 0 in 64 bits
+    m.ny = 4;
+    io::OutputFile out(path);
+    io::write_header(out.root(), "mesh", test_run(), out.uuid());
+    io::write_mesh(out.root(), m);
+    out.commit();
+  }
+  try {
+    io::read_node_mesh_as_stored(io::open_input(path));
+    FAIL() << "accepted nx * ny that overflows";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reference_position: has 12 rows, but the attributes say nx = 4611686018427387904"),
+              std::string::npos)
+        << e.what();
   }
   fs::remove_all(dir);
 }
