@@ -149,6 +149,17 @@ hsize_t checked_extent(hid_t d, hid_t file_type, const std::vector<hsize_t>& dim
 
 }  // namespace
 
+bool standard_number_type(hid_t t) {
+  // (a damaged integer or float description, its precision or offset, sends libhdf5's conversion out of
+  // bounds: only the standard layouts are converted)
+  for (hid_t s : {H5T_STD_I8LE, H5T_STD_I16LE, H5T_STD_I32LE, H5T_STD_I64LE, H5T_STD_U8LE, H5T_STD_U16LE,
+                  H5T_STD_U32LE, H5T_STD_U64LE, H5T_STD_I8BE, H5T_STD_I16BE, H5T_STD_I32BE, H5T_STD_I64BE,
+                  H5T_STD_U8BE, H5T_STD_U16BE, H5T_STD_U32BE, H5T_STD_U64BE, H5T_IEEE_F32LE, H5T_IEEE_F64LE,
+                  H5T_IEEE_F32BE, H5T_IEEE_F64BE})
+    if (H5Tequal(t, s) > 0) return true;
+  return false;
+}
+
 bool encodes_chunks(hid_t mem_type, hid_t file_type) { return H5Tequal(mem_type, file_type) > 0; }
 
 herr_t write_encoded_chunk(hid_t d, const std::vector<hsize_t>& offset, std::span<const unsigned char> data,
@@ -278,6 +289,7 @@ std::vector<T> Group::read(std::string_view name, std::vector<hsize_t>* dims_out
   Hid ftype(H5Dget_type(d.get()));
   const H5T_class_t cls = H5Tget_class(ftype.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where(name) + ": not a numeric dataset");
+  if (!standard_number_type(ftype.get())) throw InputError(where(name) + ": damaged or unusual number type");
   if (!std::is_floating_point_v<T> && cls != H5T_INTEGER)
     throw InputError(where(name) + ": holds floating-point values where integers (indices, counts, flags) belong");
   Hid space(H5Dget_space(d.get()));
@@ -445,6 +457,7 @@ std::vector<T> read_numeric_attr(const Hid& a, const std::string& what) {
   Hid ftype(H5Aget_type(a.get()));
   const H5T_class_t cls = H5Tget_class(ftype.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(what + ": not numeric");
+  if (!standard_number_type(ftype.get())) throw InputError(what + ": damaged or unusual number type");
   const std::size_t count = attribute_points(a, ftype, what);
   std::vector<T> out(count);
   if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0) throw InputError(what + ": cannot read");

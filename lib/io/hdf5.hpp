@@ -40,6 +40,10 @@ class Hid {
 // Silences HDF5's own error printing: we report errors ourselves, naming file and object.
 void silence_hdf5_errors();
 
+// Whether `t` is one of HDF5's standard integer or IEEE float types (8 to 64 bits, either byte order): the
+// only number types the readers convert.
+bool standard_number_type(hid_t t);
+
 // Whether chunks of a dataset of `file_type`, written from memory of `mem_type`, can be encoded by us
 // (write_encoded_chunk): the two types must be the same bytes (native little-endian types to LE file types).
 bool encodes_chunks(hid_t mem_type, hid_t file_type);

@@ -74,6 +74,9 @@ void send_strings(haddr_t object, const std::string& attr, char* const* values, 
 // variable-length data the read allocated (described by `mem_space`).
 template <class Read>
 void read_native(hid_t ftype, hid_t mem_space, hssize_t count, const std::string& where, Read&& read) {
+  const H5T_class_t cls = H5Tget_class(ftype);
+  if ((cls == H5T_INTEGER || cls == H5T_FLOAT) && !standard_number_type(ftype))
+    damaged(where, "damaged or unusual number type");  // the readers refuse it without converting
   Hid mtype(H5Tget_native_type(ftype, H5T_DIR_ASCEND));
   if (mtype.get() < 0) damaged(where, "unreadable datatype");
   const std::size_t size = H5Tget_size(mtype.get());
