@@ -31,7 +31,7 @@ int run(int argc, char** argv) {
       "  paraview explosion.xmf"};
   cli::CommonOptions common;
   std::string input, output, fragments, polygons, flavour;
-  long long limit = 500000;
+  std::size_t limit = 500000;  // (negative values refused by cli::parse, as for every unsigned option)
   po::options_description desc("Options");
   desc.add_options()
       ("input", po::value(&input)->required(), "mesh or run file (a named file: the sidecar refers to it)")
@@ -56,8 +56,7 @@ int run(int argc, char** argv) {
   else if (polygons == "on") opt.polygons = io::XdmfPolygons::on;
   else if (polygons == "off") opt.polygons = io::XdmfPolygons::off;
   else throw UsageError("--polygons: unknown value '" + polygons + "' (auto, on or off)");
-  if (limit < 0) throw UsageError("--polygon-limit: must not be negative, got " + std::to_string(limit));
-  opt.inline_vertex_limit = static_cast<std::size_t>(limit);
+  opt.inline_vertex_limit = limit;
   if (flavour == "xdmf3") opt.flavour = io::XdmfFlavour::xdmf3;
   else if (flavour == "xdmf2") opt.flavour = io::XdmfFlavour::xdmf2;
   else throw UsageError("--flavour: unknown value '" + flavour + "' (xdmf3 or xdmf2)");

@@ -81,8 +81,8 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   double e0 = 0;
   const dynamics::RunawayGuard runaway(q0, n, "cell");
   auto observe = [&](std::int64_t step) {
-    runaway.check(integrator.q(), step, integrator.t());
     const auto q = integrator.q();
+    runaway.check(q, step, integrator.t());
     const auto v = integrator.v();
     const auto ke = model.kinetic_energy(v);
     const double ub = model.physics().beams ? model.beams().energy(q) : 0.0;

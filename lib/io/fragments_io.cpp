@@ -1,14 +1,12 @@
 #include "io/fragments_io.hpp"
 
-#include "io/atomic_file.hpp"
-#include "io/mesh_io.hpp"
-
 #include <cmath>
 #include <span>
 #include <string>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/mesh_io.hpp"
 #include "io/series.hpp"
 
 namespace frac::io {

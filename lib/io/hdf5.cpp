@@ -125,25 +125,15 @@ Hid transfer_for(hid_t mem_type, hid_t file_type, hsize_t count) {
   return dxpl;
 }
 
-// The number of elements of a dataset of shape `dims`, refused (InputError naming `where`) when it cannot
-// be what the file holds: the product overflows, or the values would take more bytes than the dataset's
-// storage can give (contiguous data takes exactly its size; compressed chunks at most deflate's ratio,
-// 1032, of theirs), so a damaged shape never drives an allocation.
-hsize_t checked_extent(hid_t d, hid_t file_type, const std::vector<hsize_t>& dims, std::size_t element_bytes,
-                       const std::string& where) {
+// The number of elements of a dataset of shape `dims`, refused (InputError naming `where`) when the
+// product overflows or the values cannot fit the dataset's storage (require_fits_storage).
+hsize_t checked_extent(hid_t d, hid_t file_type, const std::vector<hsize_t>& dims, const std::string& where) {
   hsize_t count = 1;
   for (auto n : dims) {
     if (n != 0 && count > std::numeric_limits<hsize_t>::max() / n) throw InputError(where + ": damaged dataspace");
     count *= n;
   }
-  if (count == 0) return 0;
-  const std::size_t file_bytes = H5Tget_size(file_type);
-  if (file_bytes == 0) throw InputError(where + ": damaged datatype");
-  const hsize_t storage = H5Dget_storage_size(d);
-  const hsize_t limit = std::numeric_limits<hsize_t>::max() / 2048 / std::max(file_bytes, element_bytes);
-  if (count > limit || storage == 0 || count * file_bytes > 1100 * storage + (1u << 16))
-    throw InputError(where + ": " + std::to_string(count) + " values do not fit the " + std::to_string(storage) +
-                     " bytes the file holds for them (damaged file)");
+  if (count > 0) require_fits_storage(d, file_type, count, where);
   return count;
 }
 
@@ -158,6 +148,26 @@ bool standard_number_type(hid_t t) {
                   H5T_IEEE_F32BE, H5T_IEEE_F64BE})
     if (H5Tequal(t, s) > 0) return true;
   return false;
+}
+
+void require_number_type(hid_t file_type, bool integers, const std::string& where) {
+  const H5T_class_t cls = H5Tget_class(file_type);
+  if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where + ": not a numeric dataset");
+  if (!standard_number_type(file_type)) throw InputError(where + ": damaged or unusual number type");
+  if (integers && cls != H5T_INTEGER)
+    throw InputError(where + ": holds floating-point values where integers (indices, counts, flags) belong");
+}
+
+void require_fits_storage(hid_t d, hid_t file_type, hsize_t values, const std::string& where) {
+  // Contiguous data takes exactly its size, compressed chunks at most 1/1032 of theirs (deflate's best
+  // ratio): a damaged shape never drives an allocation.
+  const std::size_t file_bytes = H5Tget_size(file_type);
+  if (file_bytes == 0) throw InputError(where + ": damaged datatype");
+  const hsize_t storage = H5Dget_storage_size(d);
+  const hsize_t limit = std::numeric_limits<hsize_t>::max() / 2048 / std::max<std::size_t>(file_bytes, 8);
+  if (values > limit || storage == 0 || values * file_bytes > 1100 * storage + (1u << 16))
+    throw InputError(where + ": " + std::to_string(values) + " values do not fit the " + std::to_string(storage) +
+                     " bytes the file holds for them (damaged file)");
 }
 
 bool encodes_chunks(hid_t mem_type, hid_t file_type) { return H5Tequal(mem_type, file_type) > 0; }
@@ -287,11 +297,7 @@ std::vector<T> Group::read(std::string_view name, std::vector<hsize_t>* dims_out
   Hid d(H5Dopen2(id(), std::string(name).c_str(), H5P_DEFAULT));
   if (d.get() < 0) throw InputError(where(name) + ": not a dataset");
   Hid ftype(H5Dget_type(d.get()));
-  const H5T_class_t cls = H5Tget_class(ftype.get());
-  if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where(name) + ": not a numeric dataset");
-  if (!standard_number_type(ftype.get())) throw InputError(where(name) + ": damaged or unusual number type");
-  if (!std::is_floating_point_v<T> && cls != H5T_INTEGER)
-    throw InputError(where(name) + ": holds floating-point values where integers (indices, counts, flags) belong");
+  require_number_type(ftype.get(), !std::is_floating_point_v<T>, where(name));
   Hid space(H5Dget_space(d.get()));
   const int r = H5Sget_simple_extent_ndims(space.get());
   if (r < 0 || r > H5S_MAX_RANK) throw InputError(where(name) + ": damaged dataspace");
@@ -301,7 +307,7 @@ std::vector<T> Group::read(std::string_view name, std::vector<hsize_t>* dims_out
     throw InputError(where(name) + ": expected " + std::to_string(rank) + " dimensions, found " + std::to_string(r));
   if (columns > 0 && (dims.empty() || dims.back() != columns))
     throw InputError(where(name) + ": expected " + std::to_string(columns) + " columns");
-  const hsize_t count = checked_extent(d.get(), ftype.get(), dims, sizeof(T), where(name));
+  const hsize_t count = checked_extent(d.get(), ftype.get(), dims, where(name));
   std::vector<T> out(count);
   if (count > 0 && H5Dread(d.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw InputError(where(name) + ": cannot read dataset (corrupt, or values out of range)");
@@ -348,7 +354,7 @@ std::vector<std::string> Group::read_strings(std::string_view name) const {
   if (r < 0 || r > H5S_MAX_RANK) throw InputError(where(name) + ": damaged dataspace");
   std::vector<hsize_t> dims(static_cast<std::size_t>(r));
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  const hsize_t count = checked_extent(d.get(), ftype.get(), dims, sizeof(char*), where(name));
+  const hsize_t count = checked_extent(d.get(), ftype.get(), dims, where(name));
   if (const auto* walked = walked_strings(d.get(), ftype.get(), "", where(name))) return *walked;
   return read_string_values(
       ftype.get(), count,

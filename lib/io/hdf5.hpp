@@ -44,6 +44,12 @@ void silence_hdf5_errors();
 // only number types the readers convert.
 bool standard_number_type(hid_t t);
 
+// InputError naming `where` unless a dataset of `file_type` reads as numbers: numeric, of a standard
+// layout, and integer when `integers` (indices, counts, flags).
+void require_number_type(hid_t file_type, bool integers, const std::string& where);
+// InputError naming `where` unless `values` elements of `file_type` can fit the storage of dataset `d`.
+void require_fits_storage(hid_t d, hid_t file_type, hsize_t values, const std::string& where);
+
 // Whether chunks of a dataset of `file_type`, written from memory of `mem_type`, can be encoded by us
 // (write_encoded_chunk): the two types must be the same bytes (native little-endian types to LE file types).
 bool encodes_chunks(hid_t mem_type, hid_t file_type);

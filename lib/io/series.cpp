@@ -184,9 +184,8 @@ std::vector<T> read_series_frame(const Group& parent, std::string_view name, lon
                      ")");
   Hid d(H5Dopen2(g.id(), "value", H5P_DEFAULT));
   Hid ftype(H5Dget_type(d.get()));
-  if (d.get() < 0 || ftype.get() < 0 || !standard_number_type(ftype.get()) ||
-      (!std::is_same_v<T, double> && H5Tget_class(ftype.get()) != H5T_INTEGER))
-    throw InputError(g.where("value") + ": damaged, or not of the expected number type");
+  if (d.get() < 0 || ftype.get() < 0) throw InputError(g.where("value") + ": damaged dataset");
+  require_number_type(ftype.get(), !std::is_same_v<T, double>, g.where("value"));
   std::vector<hsize_t> start{static_cast<hsize_t>(k)}, count{1};
   hsize_t size = 1;
   for (auto fd : info.frame_dims) {
@@ -195,10 +194,7 @@ std::vector<T> read_series_frame(const Group& parent, std::string_view name, lon
     if (fd != 0 && size > (hsize_t{1} << 40) / fd) throw InputError(g.where("value") + ": damaged dataspace");
     size *= fd;
   }
-  // A frame takes at least 1/1100 of its bytes in the file (deflate's best ratio): a damaged shape never
-  // drives an allocation.
-  if (size * sizeof(T) > 1100 * H5Dget_storage_size(d.get()) + (1u << 16))
-    throw InputError(g.where("value") + ": frames of " + std::to_string(size) + " values do not fit the file (damaged)");
+  require_fits_storage(d.get(), ftype.get(), size, g.where("value"));
   Hid fspace(H5Dget_space(d.get()));
   H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
   Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
