@@ -11,7 +11,7 @@
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "io/fragments_io.hpp"
+#include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -43,7 +43,7 @@ std::int64_t pick_frame(const Options& o, const io::RunInfo& info, const std::st
   return k;
 }
 
-std::string summary(const io::FragmentRecord& r) {
+std::string summary(const analysis::FragmentRecord& r) {
   const auto& f = r.fragments;
   std::ostringstream s;
   s << "frame " << r.frame << " (step " << r.step << ", t = " << r.time << " s): " << f.fragments() << " fragments";
@@ -93,11 +93,11 @@ int run(int argc, const char* const* argv) {
 
   const io::Group root = io::open_input(o.input);
   io::check_header(root, {"run"});
-  const io::RunInfo info = io::read_dem_run_info(root);
+  const io::RunInfo info = analysis::read_dem_run_info(root);
   const auto frame = pick_frame(o, info, root.file());
-  const io::FragmentInput in = io::read_fragment_input(root, info, frame);
+  const analysis::FragmentInput in = analysis::read_fragment_input(root, info, frame);
 
-  io::FragmentRecord rec;
+  analysis::FragmentRecord rec;
   rec.frame = in.frame;
   rec.step = in.step;
   rec.time = in.time;
@@ -105,13 +105,13 @@ int run(int argc, const char* const* argv) {
   rec.fragments = analysis::find_fragments(in.state());
   rec.histogram = analysis::mass_histogram(rec.fragments, o.min_cells, o.bins_per_decade);
 
-  if (o.time_series) rec.time_series = io::fragment_time_series(root, info, in.beam, o.min_cells);
+  if (o.time_series) rec.time_series = analysis::fragment_time_series(root, info, in.beam, o.min_cells);
 
   run.parameters = cli::resolved_options(vm);
   io::add_input(run, root);
   io::OutputFile out(o.common.output);
   io::write_header(out.root(), "fragments", run, out.uuid());
-  io::write_fragments(out.root(), rec);
+  analysis::write_fragments(out.root(), rec);
   out.commit();
   if (!o.common.quiet) std::cerr << "fragment-count: " << summary(rec) << "\n";
   return kExitOk;

@@ -11,8 +11,9 @@
 #include "analysis/powerlaw.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 #include "core/provenance.hpp"
-#include "io/fit_io.hpp"
+#include "analysis/fit_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -127,7 +128,7 @@ int run(int argc, char** argv) {
 
   if (input_format != "auto" && input_format != "hdf5" && input_format != "text")
     throw UsageError("--input-format: expected auto, hdf5 or text, got '" + input_format + "'");
-  if (format != "hdf5" && format != "text") throw UsageError("--format: expected hdf5 or text, got '" + format + "'");
+  check_one_of(format, {"hdf5", "text"}, "--format");
   analysis::check_fit_options(opt);  // before any input is read
   if (ks == "two-sided") opt.scan.ks = analysis::KsConvention::two_sided;
   else if (ks == "powerlaw-r") opt.scan.ks = analysis::KsConvention::powerlaw_r;
@@ -153,28 +154,28 @@ int run(int argc, char** argv) {
   run.seed = std::to_string(common.seed);
 
   // Input: fragments files, or columns of numbers; several are pooled.
-  io::FitInput values;
+  analysis::FitInput values;
   for (const std::string& input : inputs) {
-    const bool hdf5 = input_format == "hdf5" || (input_format == "auto" && io::input_is_hdf5(input));
-    io::FitInput one;
+    const bool hdf5 = input_format == "hdf5" || (input_format == "auto" && analysis::input_is_hdf5(input));
+    analysis::FitInput one;
     if (hdf5) {
       const io::Group root = io::open_input(input);
       std::int64_t min_cells = 0;
       if (min_cells_text == "file") {
-        min_cells = io::fragments_min_cells(root);
+        min_cells = analysis::fragments_min_cells(root);
       } else {
         const double v = parse_bound(min_cells_text, "--min-cells");
         if (!(v >= 0) || v != std::floor(v)) throw UsageError("--min-cells: expected 'file' or a whole number >= 0");
         min_cells = static_cast<std::int64_t>(v);
       }
-      one = io::read_fragment_values(root, column, min_cells);
+      one = analysis::read_fragment_values(root, column, min_cells);
       io::add_input(run, root);
     } else {
       if (!vm["column"].defaulted() || !vm["min-cells"].defaulted())
         throw UsageError("--column and --min-cells apply to a fragments file, not to text input");
-      one = io::read_text_values(input);
+      one = analysis::read_text_values(input);
     }
-    io::pool_into(values, one);
+    analysis::pool_into(values, one);
   }
 
   if (cell_mass_auto) opt.cell_mass = values.column == "mass" ? values.mean_cell_mass() : 0.0;
@@ -186,17 +187,17 @@ int run(int argc, char** argv) {
 
   if (!histogram_csv.empty()) {
     std::ostringstream csv;
-    io::write_histogram_csv(csv, report, provenance_line(run));
-    io::write_text_output(histogram_csv, csv.str());
+    analysis::write_histogram_csv(csv, report, provenance_line(run));
+    io::write_file_atomically(histogram_csv, csv.str());
   }
   if (format == "text") {
     std::ostringstream text;
-    io::write_fit_text(text, report, values);
-    io::write_text_output(common.output, text.str());
+    analysis::write_fit_text(text, report, values);
+    io::write_file_atomically(common.output, text.str());
   } else {
     io::OutputFile out(common.output);
     io::write_header(out.root(), "fit", run, out.uuid());
-    io::write_fit(out.root(), report, values);
+    analysis::write_fit(out.root(), report, values);
     out.commit();
   }
   if (!common.quiet) {

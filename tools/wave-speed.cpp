@@ -12,6 +12,7 @@
 #include "analysis/wave_speed_theory.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 #include "core/provenance.hpp"
 #include "io/atomic_file.hpp"
 #include "io/header.hpp"
@@ -124,16 +125,13 @@ int body(int argc, char** argv) {
   positional.add("input", 1);
   const auto vm = cli::parse(argc, argv, spec, desc, positional);
 
-  if (format != "hdf5" && format != "text") throw UsageError("--format: expected hdf5 or text, got '" + format + "'");
+  check_one_of(format, {"hdf5", "text"}, "--format");
   const bool have_run = vm.count("input") > 0;
   if (!have_run && !vm.count("theory"))
     throw UsageError("give a run file (or - for standard input), or --theory for the prediction alone");
 
   analysis::TheoryInputs th;
-  if (vm.count("theory")) th.theory = theory;
-  if (th.theory == "mr") th.theory = "mooney-rivlin";
-  if (!th.theory.empty() && th.theory != "mooney-rivlin" && th.theory != "dem")
-    throw UsageError("--theory: expected mooney-rivlin or dem, got '" + th.theory + "'");
+  if (vm.count("theory")) th.theory = analysis::parse_theory(theory, "--theory");
   const auto opt = [&](const char* key, double v, std::optional<double>& into) {
     if (vm.count(key)) into = v;
   };
@@ -175,18 +173,7 @@ int body(int argc, char** argv) {
     req.front.lateral = front.lateral;
     req.front.reject = front.reject;
     req.front.interpolate = !no_interpolate;
-    if (amplitude == "local") req.front.amplitude = analysis::AmplitudeRef::local;
-    else if (amplitude == "global") req.front.amplitude = analysis::AmplitudeRef::global;
-    else {
-      req.front.amplitude = analysis::AmplitudeRef::absolute;
-      try {
-        std::size_t used = 0;
-        req.front.amplitude_value = std::stod(amplitude, &used);
-        if (used != amplitude.size()) throw std::invalid_argument(amplitude);
-      } catch (const std::logic_error&) {
-        throw UsageError("--amplitude: expected local, global or a number, got '" + amplitude + "'");
-      }
-    }
+    analysis::parse_amplitude(amplitude, "--amplitude", req.front);
     if (!dirs.empty()) {
       req.front.directions = dirs;
       req.directions_given = true;

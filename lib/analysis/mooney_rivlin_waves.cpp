@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 
 namespace frac::analysis {
 namespace {
@@ -14,7 +14,7 @@ namespace {
 // A wave needs a positive speed: zero (b = 2 for shear) counts as none.
 double positive_or_nan(double c) { return c > 0 ? c : std::numeric_limits<double>::quiet_NaN(); }
 
-rubber::mr::Mat2 stretch_tensor(Stretch s) { return rubber::mr::Mat2{{s.x, 0}, {0, s.y}}; }
+mr::Mat2 stretch_tensor(Stretch s) { return mr::Mat2{{s.x, 0}, {0, s.y}}; }
 
 std::string number(double v) {
   std::ostringstream out;
@@ -36,9 +36,9 @@ void validate(const MooneyRivlin& m, Stretch s) {
 
 MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direction) {
   validate(m, s);
-  const rubber::mr::Vec2 n(std::cos(direction), std::sin(direction));
-  const rubber::mr::Mat2 F = stretch_tensor(s);
-  const rubber::mr::Speeds c = rubber::mr::speeds(F, n, m.a, m.b);
+  const mr::Vec2 n(std::cos(direction), std::sin(direction));
+  const mr::Mat2 F = stretch_tensor(s);
+  const mr::Speeds c = mr::speeds(F, n, m.a, m.b);
   MrWaveSpeeds out;
   out.direction = direction;
   out.stretch_along = (F.transpose() * n).norm();
@@ -66,9 +66,9 @@ double mach_angle(const MooneyRivlin& m, Stretch s, double speed, bool longitudi
 
 MrStress mooney_rivlin_stress(const MooneyRivlin& m, Stretch s) {
   validate(m, s);
-  const rubber::mr::Material material{m.a, m.b, m.density};
-  const rubber::mr::Mat2 F = stretch_tensor(s);
-  const rubber::mr::Mat2 P = rubber::mr::piola(F, material), sigma = rubber::mr::cauchy(F, material);
+  const mr::Material material{m.a, m.b, m.density};
+  const mr::Mat2 F = stretch_tensor(s);
+  const mr::Mat2 P = mr::piola(F, material), sigma = mr::cauchy(F, material);
   MrStress out;
   out.piola_xx = P(0, 0);
   out.piola_yy = P(1, 1);

@@ -99,6 +99,22 @@ Arrival parse_arrival(std::string_view text, std::string_view option) {
 }
 std::string_view name(Side s) { return s == Side::both ? "both" : s == Side::forward ? "forward" : "backward"; }
 
+void parse_amplitude(std::string_view text, std::string_view option, FrontOptions& front) {
+  if (text == "local" || text == "global") {
+    front.amplitude = text == "local" ? AmplitudeRef::local : AmplitudeRef::global;
+    return;
+  }
+  const std::string value(text);
+  try {
+    std::size_t used = 0;
+    front.amplitude_value = std::stod(value, &used);
+    if (used != value.size()) throw std::invalid_argument(value);
+  } catch (const std::logic_error&) {
+    throw UsageError(std::string(option) + ": expected local, global or a number, got '" + value + "'");
+  }
+  front.amplitude = AmplitudeRef::absolute;
+}
+
 WaveMode parse_wave_mode(std::string_view text, std::string_view option) {
   if (text == "longitudinal" || text == "L" || text == "P") return WaveMode::longitudinal;
   if (text == "shear" || text == "transverse" || text == "T" || text == "S") return WaveMode::shear;

@@ -87,6 +87,10 @@ struct FrontOptions {
   Arrival arrival = Arrival::threshold;
 };
 
+// An --amplitude value: local, global or a number (absolute): sets front.amplitude and amplitude_value.
+// UsageError naming `option` for anything else.
+void parse_amplitude(std::string_view text, std::string_view option, FrontOptions& front);
+
 // Least-squares line y = intercept + slope·x through the points with used[k] = 1, with standard errors
 // from the residuals (n - 2 degrees of freedom).
 struct LineFit {

@@ -182,6 +182,12 @@ std::map<std::string, std::string> run_parameters(const io::Group& run, std::str
   return out;
 }
 
+std::string parse_theory(std::string_view text, std::string_view option) {
+  if (text == "mooney-rivlin" || text == "mr") return "mooney-rivlin";
+  if (text == "dem") return "dem";
+  throw UsageError(std::string(option) + ": expected mooney-rivlin or dem, got '" + std::string(text) + "'");
+}
+
 io::SpeedsRecord predict_speeds(const TheoryInputs& in) {
   TheoryInputs t = in;
   if (t.theory.empty()) t.theory = "mooney-rivlin";

@@ -31,6 +31,9 @@ struct TheoryInputs {
   std::vector<double> directions;  // rad (kRadial allowed); theory alone: default x and y
 };
 
+// A --theory value: "mooney-rivlin" (or "mr") or "dem"; UsageError naming `option` otherwise.
+std::string parse_theory(std::string_view text, std::string_view option);
+
 // The predicted speeds alone (origin "theory"). UsageError naming the missing or bad option.
 io::SpeedsRecord predict_speeds(const TheoryInputs& in);
 

@@ -36,4 +36,14 @@ Physics read_physics(Scene& s) {
   return p;
 }
 
+std::vector<std::string> Physics::contact_laws() const {
+  std::vector<std::string> names;
+  if (!contacts) return names;
+  names.push_back("contact");
+  if (damping) names.push_back("damping");
+  if (friction) names.push_back("friction");
+  names.insert(names.end(), more_contact_laws.begin(), more_contact_laws.end());
+  return names;
+}
+
 }  // namespace frac::dem

@@ -1,6 +1,9 @@
 #pragma once
 // Material and physics switches of a DEM scene (physics/polygon-dem.md §0, §7): Table 1 of Kun et al.
 // in SI as defaults, the 2D thickness h that turns areas into masses and moduli into stiffnesses.
+#include <string>
+#include <vector>
+
 #include "core/scene.hpp"
 
 namespace frac::dem {
@@ -25,6 +28,10 @@ struct Physics {
   bool breaking = true;
   bool friction = false;
   bool damping = false;
+  // Contact laws beyond the paper's, by the names of their rows in the model's table (dem/contact_laws).
+  std::vector<std::string> more_contact_laws;
+  // The contact laws on: "contact" (with contacts), "damping", "friction", then more_contact_laws.
+  std::vector<std::string> contact_laws() const;
 };
 
 // [material] and [physics] sections. UsageError naming the key for bad values.

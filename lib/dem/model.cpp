@@ -9,24 +9,6 @@
 
 namespace frac::dem {
 
-ContactTerm contact_term_of(Term t) {
-  switch (t) {
-    case Term::contact_damping: return ContactTerm::damping;
-    case Term::contact_friction: return ContactTerm::friction;
-    default: return ContactTerm::elastic;
-  }
-}
-
-std::string_view term_name(Term t) {
-  switch (t) {
-    case Term::beams: return "beams";
-    case Term::contact_elastic: return "contact";
-    case Term::contact_damping: return "damping";
-    case Term::contact_friction: return "friction";
-    default: return "?";
-  }
-}
-
 double LayerMotion::displacement(double t) const {
   if (speed == 0) return 0;
   if (t < ramp) return 0.5 * speed / ramp * t * t;
@@ -41,22 +23,19 @@ double LayerMotion::acceleration(double t) const {
   return t < ramp ? speed / ramp : 0;
 }
 
-Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics)
-    : bodies_(make_bodies(mesh, material)),
-      material_(material),
-      physics_(physics),
-      contact_parameters_{material.grain_modulus, material.thickness, material.gamma_n, material.gamma_t,
-                          material.friction} {
+Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics,
+             const ContactLawTable& laws)
+    : bodies_(make_bodies(mesh, material)), material_(material), physics_(physics) {
   // The beams' geometry is kept even when they are off (a run file records every mesh beam: intact flags
   // and strains); off, the Simulation marks them all broken and the term is not in the list.
   beams_ = Beams(mesh, material);
-  if (physics.beams) terms_.push_back(Term::beams);
-  if (physics.contacts) {
-    search_ = ContactSearch(mesh, bodies_);
-    terms_.push_back(Term::contact_elastic);
-    if (physics.damping) terms_.push_back(Term::contact_damping);
-    if (physics.friction) terms_.push_back(Term::contact_friction);
-  }
+  if (physics.beams) terms_.push_back("beams");
+  const std::vector<std::string> law_names = physics.contact_laws();
+  laws_ = make_contact_laws(laws, law_names, material);
+  law_power_.assign(laws_.size(), 0.0);
+  contacts_.set_laws(laws_.size());
+  terms_.insert(terms_.end(), laws_.names.begin(), laws_.names.end());
+  if (physics.contacts) search_ = ContactSearch(mesh, bodies_);
   force_.assign(size(), 0.0);
   inv_mass_.resize(size());
   for (std::size_t k = 0; k < bodies_.n; ++k) {
@@ -80,10 +59,9 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
                      StepLoops* loops) {
   const std::size_t n = size();
   double* force = force_.data();
-  power_.fill(0.0);
-  for (const Term term : terms_) ++calls_[static_cast<std::size_t>(term)];
+  ++evaluations_;
   // The beams, when on, come first and write the forces (no pass to zero them first: a loop fewer).
-  const bool beams_on = !terms_.empty() && terms_.front() == Term::beams;
+  const bool beams_on = physics_.beams;
   const bool contact_list = physics_.contacts;
   const auto most = static_cast<std::size_t>(max_threads());
   if (contact_list) search_.reserve_threads(most, contacts_);
@@ -125,10 +103,8 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
     if (contact_list) {
       // The block this thread filled (not contacts_.mine(): the list's `blocks` is set after the barrier).
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
-      unsigned terms = 0;  // (the scene's contact terms, in one pass over the list)
-      for (const Term term : terms_)
-        if (term != Term::beams) terms |= contact_term_bit(contact_term_of(term));
-      contact_terms(terms, contacts_, contact_parameters_, bodies_, q, v, mine);
+      contact_kinematics(contacts_, bodies_, q, v, mine);
+      apply_contact_laws(laws_, contacts_, mine);
       // The first thread adds its own block's forces onto its cells before the barrier: they come first onto
       // them, and no other thread writes them. (It is the one that waits here: it reads the first rows of the
       // next thread's cells, whose loops then wait for its copies of their lines to be invalidated.)
@@ -145,8 +121,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
     if (contact_list) {
       const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
       const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
-      for (const Term term : terms_)
-        if (term != Term::beams) contact_block_powers(contacts_, contact_term_of(term), count, mine);
+      for (std::size_t l = 0; l < laws_.size(); ++l) law_block_powers(contacts_, l, count, mine);
       const std::size_t first_block = thread_index() == 0 ? 1 : 0;  // (the first thread's own: added above)
       add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{first_block, nt});
     }
@@ -177,17 +152,12 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       }
     }
   });
-  if (contact_list) {
-    for (const Term term : terms_) {
-      if (term == Term::beams) continue;
-      power_[static_cast<std::size_t>(term)] = contact_power_of_blocks(contacts_, contact_term_of(term));
-    }
-  }
+  for (std::size_t l = 0; l < laws_.size(); ++l) law_power_[l] = law_power_of_blocks(contacts_, l);
   double zero = 0;
   for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
   breaks_found_ = loops != nullptr && break_after_steps_ && zero == 0.0;
   // A non-finite force is traced to the first term that made it (the run stops at this step).
-  if (zero != 0.0 && non_finite_term_ == Term::count) blame_non_finite(q, v);
+  if (zero != 0.0 && non_finite_term_.empty()) blame_non_finite(q, v);
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {
     const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];
@@ -196,32 +166,37 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
   }
 }
 
-double Model::add_term(Term term, std::span<const double> q, std::span<const double> v) {
-  switch (term) {
-    case Term::beams: beams_.add_forces(q, force_); return 0.0;
-    case Term::contact_elastic: return contact_elastic(contacts_, contact_parameters_, bodies_, q, v);
-    case Term::contact_damping: return contact_damping(contacts_, contact_parameters_, bodies_, q, v);
-    case Term::contact_friction: return contact_friction(contacts_, contact_parameters_, bodies_, q, v);
-    default: return 0.0;
-  }
+std::int64_t Model::calls(std::string_view term) const {
+  return std::find(terms_.begin(), terms_.end(), term) != terms_.end() ? evaluations_ : 0;
 }
 
 void Model::blame_non_finite(std::span<const double> q, std::span<const double> v) {
-  // The same evaluation again, one term at a time, from zero forces (the contact list is kept): each contact
-  // term alone on the contacts, then added to the cells.
-  std::fill(force_.begin(), force_.end(), 0.0);
-  for (const Term term : terms_) {
-    const bool contact = term != Term::beams;
-    if (contact) contacts_.clear_forces();
-    add_term(term, q, v);
-    if (contact) add_contact_forces(contacts_, bodies_.n, q, force_);
+  // The same evaluation again, one term at a time, the forces of the terms so far summed from zero (the contact
+  // list is kept): the beams, then the contact laws one after another.
+  auto first_non_finite = [&](const std::string& term) {
     for (std::size_t i = 0; i < force_.size(); ++i) {
       if (!std::isfinite(force_[i])) {
         non_finite_term_ = term;
         non_finite_index_ = i;
-        return;
+        return true;
       }
     }
+    return false;
+  };
+  std::fill(force_.begin(), force_.end(), 0.0);
+  if (physics_.beams) {
+    beams_.add_forces(q, force_);
+    if (first_non_finite("beams")) return;
+  }
+  if (laws_.size() == 0) return;
+  const std::vector<double> beam_force = force_;
+  const Range all{0, contacts_.size()};
+  contact_kinematics(contacts_, bodies_, q, v, all);
+  for (std::size_t l = 0; l < laws_.size(); ++l) {
+    laws_.laws[l]->add(contacts_, all, contacts_.law_power[l].data());
+    force_ = beam_force;
+    add_contact_forces(contacts_, bodies_.n, q, force_);
+    if (first_non_finite(laws_.names[l])) return;
   }
 }
 

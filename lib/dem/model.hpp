@@ -7,22 +7,20 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "dem/beams.hpp"
 #include "dem/bodies.hpp"
 #include "core/parallel.hpp"
-#include "dem/contacts.hpp"
+#include "dem/contact_laws.hpp"
+#include "dem/contact_list.hpp"
+#include "dem/contact_search.hpp"
 #include "dem/material.hpp"
 #include "dynamics/integrator.hpp"
 
 namespace frac::dem {
-
-enum class Term : int { beams = 0, contact_elastic, contact_damping, contact_friction, count };
-std::string_view term_name(Term t);
-// The contact term a Term names (the contact list's own numbering); elastic for the others.
-ContactTerm contact_term_of(Term t);
 
 // A prescribed coordinate: index into q, and its trajectory q(t) = q0 + s(t), with s, ṡ, s̈ from the
 // loading protocol (shared by every coordinate of one boundary layer through `layer`).
@@ -42,7 +40,9 @@ struct LayerMotion {
 
 class Model final : public dynamics::System {
  public:
-  Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics);
+  // The contact laws the physics names, from `laws` (the paper's by default; tests add their own).
+  Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics,
+        const ContactLawTable& laws = contact_law_table());
 
   // dynamics::System
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
@@ -66,16 +66,20 @@ class Model final : public dynamics::System {
 
   // Forces (fx, fy, torque layout) of the last evaluation: the total on every coordinate.
   std::span<const double> forces() const { return force_; }
-  // Power of each term at the last evaluation (W), and of the boundary (what the prescribed motion
-  // must supply beyond the other forces: Σ (m a − F)·v over the prescribed coordinates).
-  double power(Term t) const { return power_[static_cast<std::size_t>(t)]; }
+  // The power of contact law l (contact_laws().names[l]) at the last evaluation (W), and of the boundary (what
+  // the prescribed motion must supply beyond the other forces: Σ (m a − F)·v over the prescribed coordinates).
+  // (The beams deliver theirs through their energy.)
+  double law_power(std::size_t l) const { return law_power_[l]; }
   double boundary_power() const { return boundary_power_; }
-  // How often each term ran (tests check that a term that is off never runs).
-  std::int64_t calls(Term t) const { return calls_[static_cast<std::size_t>(t)]; }
-  const std::vector<Term>& terms() const { return terms_; }
-  // The first term whose forces became non-finite at an evaluation (Term::count if none), and the
-  // coordinate index (0..3N) where it happened.
-  Term non_finite_term() const { return non_finite_term_; }
+  const ContactLaws& contact_laws() const { return laws_; }
+  // The force terms on, by name, in the order they run: "beams" (when on), then the contact laws.
+  const std::vector<std::string>& terms() const { return terms_; }
+  // How often a term ran: every evaluation for a term on, 0 for one that is off (tests check that such a term
+  // never runs).
+  std::int64_t calls(std::string_view term) const;
+  // The first term whose forces became non-finite at an evaluation ("" if none), and the coordinate index
+  // (0..3N) where it happened.
+  const std::string& non_finite_term() const { return non_finite_term_; }
   std::size_t non_finite_index() const { return non_finite_index_; }
 
   // The breaking pass after a step (the run's: Beams::break_beams at the corrected positions, thresholds of the
@@ -93,9 +97,6 @@ class Model final : public dynamics::System {
   // accelerations, with the integrator's loops around them on its team when `loops` is given.
   void evaluate(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
                 StepLoops* loops);
-  // Adds one term's forces into force_; returns the power it delivers (W; 0 for the beams, which derive from
-  // an energy).
-  double add_term(Term term, std::span<const double> q, std::span<const double> v);
   // After an evaluation whose forces are not all finite: the first term, and the coordinate, where they
   // became non-finite (non_finite_term_, non_finite_index_).
   void blame_non_finite(std::span<const double> q, std::span<const double> v);
@@ -106,13 +107,13 @@ class Model final : public dynamics::System {
   ContactSearch search_;
   mutable std::vector<std::array<double, 2>> energy_blocks_;  // kinetic_energy's block sums
   ContactList contacts_;
-  ContactParameters contact_parameters_;
-  std::vector<Term> terms_;
+  ContactLaws laws_;
+  std::vector<std::string> terms_;
   std::vector<double> force_;
-  std::array<double, static_cast<std::size_t>(Term::count)> power_{};
-  std::array<std::int64_t, static_cast<std::size_t>(Term::count)> calls_{};
+  std::vector<double> law_power_;
+  std::int64_t evaluations_ = 0;
   double boundary_power_ = 0;
-  Term non_finite_term_ = Term::count;
+  std::string non_finite_term_;
   std::size_t non_finite_index_ = 0;
   std::vector<LayerMotion> layers_;
   std::vector<Prescribed> prescribed_;

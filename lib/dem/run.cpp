@@ -17,9 +17,9 @@ std::string blame_non_finite(const Model& model, const dynamics::Integrator& in,
   const char* what[3] = {"x", "y", "angle"};
   std::ostringstream msg;
   msg << "non-finite value at step " << step << " (t = " << in.t() << " s)";
-  if (model.non_finite_term() != Term::count) {
+  if (!model.non_finite_term().empty()) {
     const std::size_t k = model.non_finite_index();
-    msg << ": the " << term_name(model.non_finite_term()) << " force on cell " << k % n << " (" << what[k / n]
+    msg << ": the " << model.non_finite_term() << " force on cell " << k % n << " (" << what[k / n]
         << ")";
   } else {
     const auto q = in.q();
@@ -56,8 +56,10 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
 
   summary.start_evaluations =
       dynamics::start(integrator, model, 0.0, dt, q0, v0, scene.integrator.start, start_tau);
-  std::array<double, static_cast<std::size_t>(Term::count)> previous_power{};
-  for (Term t : model.terms()) previous_power[static_cast<std::size_t>(t)] = model.power(t);
+  const ContactLaws& laws = model.contact_laws();
+  ledger.law_work.assign(laws.size(), 0.0);
+  std::vector<double> previous_power(laws.size());
+  for (std::size_t l = 0; l < laws.size(); ++l) previous_power[l] = model.law_power(l);
   double previous_boundary_power = model.boundary_power();
   auto write_frame = [&](std::int64_t step) {
     if (!writer) return;
@@ -78,6 +80,17 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     frame.time = integrator.t();
     writer->write_frame(frame);
   };
+  // The work done by the law named `name` (0 when it is off).
+  auto law_work = [&](const std::string& name) {
+    for (std::size_t l = 0; l < laws.size(); ++l)
+      if (laws.names[l] == name) return ledger.law_work[l];
+    return 0.0;
+  };
+  auto is_paper_law = [](const std::string& name) {
+    for (const ContactLawRow& row : contact_law_table())
+      if (row.name == name) return true;
+    return false;
+  };
   double e0 = 0;
   const dynamics::RunawayGuard runaway(q0, n, "cell");
   auto observe = [&](std::int64_t step) {
@@ -86,11 +99,10 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     const auto v = integrator.v();
     const auto ke = model.kinetic_energy(v);
     const double ub = model.physics().beams ? model.beams().energy(q) : 0.0;
-    const double w_contact = -ledger.work[static_cast<std::size_t>(Term::contact_elastic)];
-    const double w_damping = -ledger.work[static_cast<std::size_t>(Term::contact_damping)];
-    const double w_friction = -ledger.work[static_cast<std::size_t>(Term::contact_friction)];
-    const double balance =
-        ke[0] + ke[1] + ub + w_contact + w_damping + w_friction + ledger.broken_energy - ledger.boundary;
+    // The work done against each law (the energy it stored or dissipated), in the laws' order.
+    double against_laws = 0;
+    for (const double w : ledger.law_work) against_laws -= w;
+    const double balance = ke[0] + ke[1] + ub + against_laws + ledger.broken_energy - ledger.boundary;
     if (step == 0) e0 = balance;
     summary.energy_error = std::max(summary.energy_error, std::abs(balance - e0));
     summary.energy_scale = std::max({summary.energy_scale, std::abs(e0), std::abs(ledger.boundary)});
@@ -99,9 +111,11 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     writer->observe("kinetic_energy_translational", step, t, ke[0], "J");
     writer->observe("kinetic_energy_rotational", step, t, ke[1], "J");
     writer->observe("beam_energy", step, t, ub, "J");
-    writer->observe("contact_work", step, t, w_contact, "J");
-    writer->observe("damping_work", step, t, w_damping, "J");
-    writer->observe("friction_work", step, t, w_friction, "J");
+    // The paper's laws' work always (zero when off), then any other law's.
+    for (const ContactLawRow& row : contact_law_table())
+      writer->observe(row.name + "_work", step, t, -law_work(row.name), "J");
+    for (std::size_t l = 0; l < laws.size(); ++l)
+      if (!is_paper_law(laws.names[l])) writer->observe(laws.names[l] + "_work", step, t, -ledger.law_work[l], "J");
     writer->observe("broken_beam_energy", step, t, ledger.broken_energy, "J");
     writer->observe("boundary_work", step, t, ledger.boundary, "J");
     writer->observe("energy_balance", step, t, balance, "J");
@@ -126,14 +140,13 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     integrator.step(model);
     ++step;
     // Ledger: the power of each term integrated by the trapezoidal rule between force evaluations.
-    for (Term t : model.terms()) {
-      const auto k = static_cast<std::size_t>(t);
-      ledger.work[k] += 0.5 * (previous_power[k] + model.power(t)) * dt;
-      previous_power[k] = model.power(t);
+    for (std::size_t l = 0; l < laws.size(); ++l) {
+      ledger.law_work[l] += 0.5 * (previous_power[l] + model.law_power(l)) * dt;
+      previous_power[l] = model.law_power(l);
     }
     ledger.boundary += 0.5 * (previous_boundary_power + model.boundary_power()) * dt;
     previous_boundary_power = model.boundary_power();
-    if (model.non_finite_term() != Term::count || !integrator.finite())
+    if (!model.non_finite_term().empty() || !integrator.finite())
       throw RuntimeError(blame_non_finite(model, integrator, step));
     if (breaking) {
       const std::size_t before = broken.size();

@@ -4,6 +4,7 @@
 // naming the step, the cell and the term.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/progress.hpp"
 #include "dem/loading.hpp"
@@ -26,9 +27,9 @@ struct RunSummary {
 };
 
 struct Ledger {
-  double work[static_cast<std::size_t>(Term::count)] = {};  // work done by each term on the bodies, J
-  double boundary = 0;                                       // work done by the moving boundaries, J
-  double broken_energy = 0;                                  // elastic energy removed with broken beams, J
+  std::vector<double> law_work;  // work done by each contact law on the bodies (Model::contact_laws' order), J
+  double boundary = 0;           // work done by the moving boundaries, J
+  double broken_energy = 0;      // elastic energy removed with broken beams, J
 };
 
 // Runs `model` from (q0, v0); writes frames and observables through `writer` (frames every

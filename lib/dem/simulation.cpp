@@ -5,7 +5,11 @@
 namespace frac::dem {
 
 Simulation::Simulation(const mesh::CellMesh& mesh, const DemScene& s)
-    : scene(s), model(mesh, s.material, s.physics), q0(3 * mesh.cells(), 0.0), v0(3 * mesh.cells(), 0.0) {
+    : cell_mesh(&mesh),
+      scene(s),
+      model(mesh, s.material, s.physics),
+      q0(3 * mesh.cells(), 0.0),
+      v0(3 * mesh.cells(), 0.0) {
   const std::size_t n = mesh.cells();
   for (std::size_t k = 0; k < n; ++k) {
     q0[k] = mesh.centroid[k].x();

@@ -14,7 +14,9 @@
 namespace frac::dem {
 
 struct Simulation {
+  // (`mesh` must outlive the simulation.)
   Simulation(const mesh::CellMesh& mesh, const DemScene& scene);
+  const mesh::CellMesh* cell_mesh;
   DemScene scene;
   Model model;
   LoadingSetup setup;

@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "core/error.hpp"
-#include "io/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/series.hpp"
@@ -73,15 +72,7 @@ LinkMode link_mode_from_text(const std::string& text, const std::string& option)
 
 FragmentLabels read_fragment_labels(const io::Group& fragments_root) {
   io::check_header(fragments_root, {"fragments"});
-  const io::FragmentRecord r = io::read_fragments(fragments_root);
-  FragmentLabels l;
-  l.cell_fragment = r.fragments.cell_fragment;
-  l.mass = r.fragments.mass;
-  l.cell_count = r.fragments.cell_count;
-  l.frame = r.frame;
-  l.time = r.time;
-  l.file = fragments_root.file();
-  return l;
+  return io::read_fragment_labels(fragments_root);
 }
 
 bool counted_from(const io::Group& fragments_root, const io::Group& run_root) {

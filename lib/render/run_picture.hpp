@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/fragment_labels.hpp"
 #include "io/hdf5.hpp"
 #include "io/run_io.hpp"
 #include "mesh/cell_mesh.hpp"
@@ -36,15 +37,8 @@ struct PictureOptions {
 };
 
 // Labels from a fragments file (kind "fragments"): fragment of each cell, fragments sorted by mass.
-struct FragmentLabels {
-  std::vector<std::int64_t> cell_fragment;
-  std::vector<double> mass;             // kg, per fragment
-  std::vector<std::int64_t> cell_count;  // per fragment
-  std::int64_t frame = -1;              // the run frame they were counted at
-  double time = 0.0;
-  std::string file;
-};
-// Reads /fragments/cell_fragment (and masses, counts, frame) with io/fragments_io.
+using io::FragmentLabels;
+// Checks the header and reads /fragments' labels (io/fragment_labels).
 FragmentLabels read_fragment_labels(const io::Group& fragments_root);
 
 // Whether a fragments file was counted from this run: its provenance history names the run file's

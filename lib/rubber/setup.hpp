@@ -16,7 +16,7 @@
 #include "mesh/node_mesh.hpp"
 #include "rubber/bond_law.hpp"
 #include "rubber/forces.hpp"
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 #include "rubber/probe.hpp"
 
 namespace frac::rubber {

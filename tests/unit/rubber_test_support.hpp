@@ -10,7 +10,7 @@
 
 #include "rubber/bond_law.hpp"
 #include "rubber/model.hpp"
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 
 namespace frac::rubber::test {
 
@@ -19,8 +19,8 @@ inline BondLaw natural_law(double b, double us, double uc, double w, const char*
                            const char* weight = "pair") {
   LawParams p;
   p.spacing = 1;
-  p.A = mr::lattice_A(1, 1, 1);
-  p.B = mr::lattice_B(1, 1, b, 1);
+  p.A = frac::mr::lattice_A(1, 1, 1);
+  p.B = frac::mr::lattice_B(1, 1, b, 1);
   p.short_width = us;
   p.cutoff = uc;
   p.cutoff_width = w;

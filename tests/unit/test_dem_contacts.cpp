@@ -16,13 +16,16 @@
 #include <cstdio>
 #include <numbers>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/rng.hpp"
 #include "dem/bodies.hpp"
-#include "dem/contacts.hpp"
+#include "dem/contact_laws.hpp"
+#include "dem/contact_search.hpp"
 #include "dem/model.hpp"
 #include "dem/timestep.hpp"
 #include "dynamics/integrator.hpp"
@@ -34,12 +37,10 @@ namespace {
 
 using frac::dem::Bodies;
 using frac::dem::ContactList;
-using frac::dem::ContactParameters;
 using frac::dem::ContactSearch;
 using frac::dem::Material;
 using frac::dem::Model;
 using frac::dem::Physics;
-using frac::dem::Term;
 using frac::geometry::Vec2;
 using frac::mesh::CellMesh;
 
@@ -142,7 +143,26 @@ std::vector<Case> hand_cases() {
   return cs;
 }
 
-// Runs the library's search and the three force terms on a two-body state.
+// The contact laws' parameters (the material's: Y, h, γ_N, γ_T, μ).
+struct ContactParameters {
+  double grain_modulus, thickness, gamma_n, gamma_t, friction;
+};
+
+// The contact laws `names` with parameters p, and their powers summed over the list, on the threads of the test.
+std::vector<double> law_powers(frac::dem::ContactList& list, const ContactParameters& p, const Bodies& bodies,
+                               const std::vector<double>& q, const std::vector<double>& v,
+                               const std::vector<std::string>& names) {
+  Material m;
+  m.grain_modulus = p.grain_modulus;
+  m.thickness = p.thickness;
+  m.gamma_n = p.gamma_n;
+  m.gamma_t = p.gamma_t;
+  m.friction = p.friction;
+  const auto laws = frac::dem::make_contact_laws(frac::dem::contact_law_table(), names, m);
+  return frac::dem::contact_forces(laws, list, bodies, q, v);
+}
+
+// Runs the library's search and the three contact laws on a two-body state.
 struct LibResult {
   ContactList list;
   std::vector<double> f;
@@ -154,9 +174,13 @@ LibResult library(const CellMesh& mesh, const Bodies& bodies, const std::vector<
   ContactSearch search(mesh, bodies);
   search.find(q, r.list);
   r.f.assign(q.size(), 0.0);
-  r.power[0] = frac::dem::contact_elastic(r.list, p, bodies, q, v);
-  r.power[1] = damping ? frac::dem::contact_damping(r.list, p, bodies, q, v) : 0.0;
-  r.power[2] = friction ? frac::dem::contact_friction(r.list, p, bodies, q, v) : 0.0;
+  std::vector<std::string> names{"contact"};
+  if (damping) names.push_back("damping");
+  if (friction) names.push_back("friction");
+  const std::vector<double> power = law_powers(r.list, p, bodies, q, v, names);
+  r.power[0] = power[0];
+  r.power[1] = damping ? power[1] : 0.0;
+  r.power[2] = friction ? power.back() : 0.0;
   frac::dem::add_contact_forces(r.list, bodies.n, q, r.f);
   return r;
 }
@@ -279,6 +303,49 @@ TEST(DemContacts, DampingAndFrictionAgainstTheNote) {
   }
   EXPECT_GT(viscous, 10);
   EXPECT_GT(coulomb, 10);
+}
+
+// A contact law that only this test knows: adhesion proportional to the overlap area, F_n = +k·A (pulling i
+// towards j). It joins the engine as one struct and one row of a table; nothing else changes.
+struct Adhesion {
+  double k;  // N/m^2
+  frac::dem::LawForce operator()(const frac::dem::ContactState& s) const { return {k * s.area, 0.0}; }
+};
+
+TEST(DemContacts, ALawOfATestJoinsTheEngineAsOneStructAndOneRow) {
+  constexpr double kAdhesion = 3e6;
+  frac::dem::ContactLawTable table = frac::dem::contact_law_table();
+  table.push_back({"adhesion", [](const Material&) { return frac::dem::contact_law(Adhesion{kAdhesion}); }});
+  const Case c = hand_cases()[0];
+  Material mat;
+  mat.gamma_n = 1e4;
+  const CellMesh mesh = rectangles(c.sizes, {Vec2(0, 0), c.cj}, 0.01);
+  const auto q = state({Vec2(0, 0), c.cj}, {0, 0});
+  const std::vector<double> v{0.2, -0.3, 0.1, 0.4, 20, -10};
+  Physics ph;
+  ph.beams = ph.breaking = false;
+  ph.damping = true;
+  Model plain(mesh, mat, ph);
+  ph.more_contact_laws = {"adhesion"};
+  Model adhesive(mesh, mat, ph, table);
+  EXPECT_EQ(adhesive.terms(), (std::vector<std::string>{"contact", "damping", "adhesion"}));
+  std::vector<double> a(6);
+  plain.accelerations(0, q, v, a);
+  adhesive.accelerations(0, q, v, a);
+  ASSERT_EQ(adhesive.contacts().size(), 1u);
+  // The added force: k·A along n on i, the opposite on j, at R (torques r × F about each centroid).
+  const Vec2 f = kAdhesion * c.area * c.n;
+  const double want[6] = {f.x(), -f.x(), f.y(), -f.y(), cross(c.R, f), -cross(c.R - c.cj, f)};
+  const double scale = std::abs(adhesive.forces()[0]) + f.norm();
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_NEAR(adhesive.forces()[k] - plain.forces()[k], want[k], 1e-12 * scale * (k >= 4 ? 0.01 : 1)) << k;
+  // Its power, F·(v_i(R) − v_j(R)), and the other laws' unchanged.
+  const Vec2 vi = Vec2(v[0], v[2]) + v[4] * perp(c.R), vj = Vec2(v[1], v[3]) + v[5] * perp(c.R - c.cj);
+  EXPECT_NEAR(adhesive.law_power(2), f.dot(vi - vj), 1e-12 * f.norm() * (vi - vj).norm());
+  EXPECT_EQ(adhesive.law_power(0), plain.law_power(0));
+  EXPECT_EQ(adhesive.law_power(1), plain.law_power(1));
+  // A scene cannot name a law its table lacks.
+  EXPECT_THROW(Model(mesh, mat, ph), frac::UsageError);
 }
 
 TEST(DemContacts, DampingAddsToTheRepulsionWhileApproaching) {
@@ -451,9 +518,8 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
                                         list.nx[k]});
       auto& f = forces[threads - 1];
       f = f0;
-      powers[threads - 1][0] = frac::dem::contact_elastic(list, p, bodies, s.q, s.v);
-      powers[threads - 1][1] = frac::dem::contact_damping(list, p, bodies, s.q, s.v);
-      powers[threads - 1][2] = frac::dem::contact_friction(list, p, bodies, s.q, s.v);
+      const std::vector<double> power = law_powers(list, p, bodies, s.q, s.v, {"contact", "damping", "friction"});
+      for (int t = 0; t < 3; ++t) powers[threads - 1][t] = power[static_cast<std::size_t>(t)];
       frac::dem::add_contact_forces(list, n, s.q, f);
     }
     frac::set_threads(1);
@@ -557,7 +623,7 @@ TEST(DemContacts, PairInteractionsConserveMomentumOnRandomOverlaps) {
                   sys.evaluations, max_contacts, sys.worst_force, sys.worst_torque, drift / scale, ke0[0] + ke0[1],
                   ke1[0] + ke1[1]);
       EXPECT_GT(max_contacts, s.mesh.cells() / 2);
-      EXPECT_GT(model.calls(Term::contact_friction), 1000);
+      EXPECT_GT(model.calls("friction"), 1000);
       EXPECT_LT(sys.worst_force, 1e-12);
       EXPECT_LT(sys.worst_torque, 1e-12);
       EXPECT_LT(drift / scale, 1e-10);

@@ -25,7 +25,8 @@
 #include "core/rng.hpp"
 #include "core/scene.hpp"
 #include "dem/beams.hpp"
-#include "dem/contacts.hpp"
+#include "dem/contact_laws.hpp"
+#include "dem/contact_search.hpp"
 #include "dem/model.hpp"
 #include "dem/run.hpp"
 #include "dem/scene.hpp"
@@ -39,7 +40,6 @@ namespace {
 using frac::dem::Material;
 using frac::dem::Model;
 using frac::dem::Physics;
-using frac::dem::Term;
 using frac::dynamics::IntegratorKind;
 using frac::geometry::Vec2;
 using frac::mesh::CellMesh;
@@ -169,7 +169,7 @@ DriftResult isolated_body_drift(IntegratorKind kind, int steps, double dt, bool 
       r.angular = std::max(r.angular, std::abs(m.l - m0.l) / m0.l_scale);
     }
   }
-  EXPECT_EQ(model.calls(Term::contact_elastic), 0);
+  EXPECT_EQ(model.calls("contact"), 0);
   EXPECT_EQ(model.beams().intact_count(), model.beams().size());
   return r;
 }
@@ -561,20 +561,20 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
     const auto s = sim.run(nullptr, progress);
-    EXPECT_EQ(sim.model.calls(Term::contact_friction), 0);
-    EXPECT_EQ(sim.model.calls(Term::contact_elastic), s.steps + 1);  // one evaluation per step + the start
-    EXPECT_EQ(sim.model.calls(Term::contact_damping), s.steps + 1);
-    EXPECT_EQ(sim.model.calls(Term::beams), s.steps + 1);
+    EXPECT_EQ(sim.model.calls("friction"), 0);
+    EXPECT_EQ(sim.model.calls("contact"), s.steps + 1);  // one evaluation per step + the start
+    EXPECT_EQ(sim.model.calls("damping"), s.steps + 1);
+    EXPECT_EQ(sim.model.calls("beams"), s.steps + 1);
   }
   {
     const auto scene = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"physics.contacts", "off"}});
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
     const auto s = sim.run(nullptr, progress);
-    EXPECT_EQ(sim.model.calls(Term::contact_elastic), 0);
-    EXPECT_EQ(sim.model.calls(Term::contact_damping), 0);
-    EXPECT_EQ(sim.model.calls(Term::contact_friction), 0);
-    EXPECT_EQ(sim.model.calls(Term::beams), s.steps + 1);
+    EXPECT_EQ(sim.model.calls("contact"), 0);
+    EXPECT_EQ(sim.model.calls("damping"), 0);
+    EXPECT_EQ(sim.model.calls("friction"), 0);
+    EXPECT_EQ(sim.model.calls("beams"), s.steps + 1);
     EXPECT_EQ(sim.model.contacts().size(), 0u);
   }
   {
@@ -583,7 +583,7 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
     sim.run(nullptr, progress);
-    EXPECT_EQ(sim.model.calls(Term::beams), 0);
+    EXPECT_EQ(sim.model.calls("beams"), 0);
   }
   // A switch that needs another is refused.
   EXPECT_THROW(load_scene("explosion", {{"physics.contacts", "off"}, {"physics.friction", "on"}}), frac::UsageError);
@@ -840,7 +840,7 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
     {
       Model model(mesh, mat, ph);  // all finite
       model.accelerations(0, q, v, a);
-      EXPECT_EQ(model.non_finite_term(), Term::count);
+      EXPECT_EQ(model.non_finite_term(), "");
       EXPECT_GT(model.contacts().size(), n);
     }
     {
@@ -848,7 +848,7 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
       auto qb = q;
       qb[2 * n + bad] = std::numeric_limits<double>::quiet_NaN();
       model.accelerations(0, qb, v, a);
-      EXPECT_EQ(model.non_finite_term(), Term::beams) << threads << " threads";
+      EXPECT_EQ(model.non_finite_term(), "beams") << threads << " threads";
       EXPECT_FALSE(std::isfinite(model.forces()[model.non_finite_index()]));
     }
     {
@@ -856,7 +856,7 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
       auto vb = v;
       vb[bad] = std::numeric_limits<double>::quiet_NaN();
       model.accelerations(0, q, vb, a);
-      EXPECT_EQ(model.non_finite_term(), Term::contact_damping) << threads << " threads";
+      EXPECT_EQ(model.non_finite_term(), "damping") << threads << " threads";
       EXPECT_FALSE(std::isfinite(model.forces()[model.non_finite_index()]));
       // The first such coordinate: the cell's own, or that of a cell in contact with it (the opposite force).
       const std::size_t cell = model.non_finite_index() % n;
@@ -935,8 +935,8 @@ TEST(DemModel, StepOnTheModelsTeamEqualsTheStepOnTeamsOfItsOwn) {
   fused_gear.step(fused_model);
   own_gear.step(own);
   EXPECT_FALSE(fused_gear.finite());
-  EXPECT_EQ(fused_model.non_finite_term(), Term::beams);
-  EXPECT_EQ(own_model.non_finite_term(), Term::beams);
+  EXPECT_EQ(fused_model.non_finite_term(), "beams");
+  EXPECT_EQ(own_model.non_finite_term(), "beams");
   EXPECT_EQ(fused_model.non_finite_index(), own_model.non_finite_index());
   // Left predicted, not corrected: the NaN stays in the one velocity and the one position the predictor made
   // from it (a correction would spread it to every cell whose forces it touched).
@@ -1031,10 +1031,9 @@ TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
       beams.set_forces(*state, f);
       frac::dem::ContactList list;
       search.find(*state, list);
-      const frac::dem::ContactParameters p{mat.grain_modulus, mat.thickness, mat.gamma_n, mat.gamma_t, mat.friction};
-      const double power[3] = {frac::dem::contact_elastic(list, p, model.bodies(), *state, v),
-                               frac::dem::contact_damping(list, p, model.bodies(), *state, v),
-                               frac::dem::contact_friction(list, p, model.bodies(), *state, v)};
+      const auto laws = frac::dem::make_contact_laws(frac::dem::contact_law_table(),
+                                                     std::vector<std::string>{"contact", "damping", "friction"}, mat);
+      const std::vector<double> power = frac::dem::contact_forces(laws, list, model.bodies(), *state, v);
       frac::dem::add_contact_forces(list, n, *state, f);
       const std::string where = std::to_string(threads) + " threads, " + (state == &q ? "first" : "moved") + " state";
       ASSERT_EQ(model.contacts().size(), list.size()) << where;
@@ -1044,9 +1043,8 @@ TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
         ASSERT_EQ(a[k], f[k] * (k < 2 * n ? 1.0 / model.bodies().mass[k % n] : 1.0 / model.bodies().inertia[k % n]))
             << where << ", coordinate " << k;
       }
-      EXPECT_EQ(model.power(Term::contact_elastic), power[0]) << where;
-      EXPECT_EQ(model.power(Term::contact_damping), power[1]) << where;
-      EXPECT_EQ(model.power(Term::contact_friction), power[2]) << where;
+      ASSERT_EQ(model.contact_laws().names, (std::vector<std::string>{"contact", "damping", "friction"}));
+      for (std::size_t l = 0; l < 3; ++l) EXPECT_EQ(model.law_power(l), power[l]) << where;
       EXPECT_NE(power[1], 0.0);
       EXPECT_NE(power[2], 0.0);
     }

@@ -1,4 +1,4 @@
-// Fragments (analysis/fragments, io/fragments_io): exact clusters of hand-built states (chains, rings,
+// Fragments (analysis/fragments, analysis/fragments_io): exact clusters of hand-built states (chains, rings,
 // an isolated cell, touching cells without beams), conservation of mass, momentum and kinetic energy,
 // independence of the cell and beam numbering, the time-series counter, the log-binned mass
 // histogram, and the run -> fragments file round trip with its refusals.
@@ -15,7 +15,7 @@
 #include "core/error.hpp"
 #include "core/provenance.hpp"
 #include "core/rng.hpp"
-#include "io/fragments_io.hpp"
+#include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 #include "io/run_io.hpp"
@@ -503,39 +503,39 @@ TEST(FragmentsIo, RunToFragmentsFileRoundTrip) {
     out.commit();
   }
   const io::Group root = io::open_input(run_path);
-  const io::RunInfo info = io::read_dem_run_info(root);
+  const io::RunInfo info = analysis::read_dem_run_info(root);
   ASSERT_EQ(info.step.size(), 2u);
-  const io::FragmentInput in = io::read_fragment_input(root, info, 1);
+  const analysis::FragmentInput in = analysis::read_fragment_input(root, info, 1);
   EXPECT_EQ(in.step, 10);
   EXPECT_EQ(in.time, 0.5);
   EXPECT_EQ(in.mass, mass);
   EXPECT_EQ(in.velocity[14], 2.0);
   EXPECT_EQ(std::count(in.intact.begin(), in.intact.end(), 0), 3);
-  EXPECT_THROW(io::read_fragment_input(root, info, 2), InputError);
+  EXPECT_THROW(analysis::read_fragment_input(root, info, 2), InputError);
 
-  io::FragmentRecord rec;
+  analysis::FragmentRecord rec;
   rec.frame = in.frame, rec.step = in.step, rec.time = in.time, rec.min_cells = 2;
   rec.fragments = analysis::find_fragments(in.state());
   ASSERT_EQ(rec.fragments.fragments(), 2u);
   EXPECT_EQ(rec.fragments.cell_count, (std::vector<std::int64_t>{9, 3}));
   rec.histogram = analysis::mass_histogram(rec.fragments, 2, 5.0);
-  rec.time_series = io::fragment_time_series(root, info, in.beam, 1);
+  rec.time_series = analysis::fragment_time_series(root, info, in.beam, 1);
   EXPECT_EQ(rec.time_series.step, (std::vector<std::int64_t>{0, 10}));
   EXPECT_EQ(rec.time_series.time, (std::vector<double>{0.0, 0.5}));
   EXPECT_EQ(rec.time_series.count, (std::vector<std::int64_t>{1, 2}));
   EXPECT_EQ(rec.time_series.largest_mass, (std::vector<double>{rec.fragments.total_mass, rec.fragments.mass[0]}));
-  EXPECT_EQ(io::fragment_time_series(root, info, in.beam, 4).count, (std::vector<std::int64_t>{1, 1}));
+  EXPECT_EQ(analysis::fragment_time_series(root, info, in.beam, 4).count, (std::vector<std::int64_t>{1, 1}));
   {
     io::OutputFile out(out_path);
     ToolRun run = start_run("test-count", "test-count");
     io::add_input(run, root);
     io::write_header(out.root(), "fragments", run, out.uuid());
-    io::write_fragments(out.root(), rec);
+    analysis::write_fragments(out.root(), rec);
     out.commit();
   }
   const io::Group back_root = io::open_input(out_path);
   EXPECT_EQ(io::check_header(back_root, {"fragments"}), "fragments");
-  const io::FragmentRecord back = io::read_fragments(back_root);
+  const analysis::FragmentRecord back = analysis::read_fragments(back_root);
   EXPECT_EQ(back.frame, 1);
   EXPECT_EQ(back.step, 10);
   EXPECT_EQ(back.time, 0.5);
@@ -641,8 +641,8 @@ TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
   write(r, true, (dir / "b.h5").string());
   const auto count = [](const std::string& path) {
     const io::Group root = io::open_input(path);
-    const auto info = io::read_dem_run_info(root);
-    return analysis::find_fragments(io::read_fragment_input(root, info, 0).state());
+    const auto info = analysis::read_dem_run_info(root);
+    return analysis::find_fragments(analysis::read_fragment_input(root, info, 0).state());
   };
   const Fragments a = count((dir / "a.h5").string()), c = count((dir / "b.h5").string());
   ASSERT_EQ(a.fragments(), c.fragments());
@@ -676,7 +676,7 @@ TEST(FragmentsIo, RefusesRubberRuns) {
     out.commit();
   }
   try {
-    io::read_dem_run_info(io::open_input(path));
+    analysis::read_dem_run_info(io::open_input(path));
     ADD_FAILURE() << "accepted a rubber run";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("model 'rubber'"), std::string::npos) << e.what();

@@ -17,7 +17,7 @@
 #include "analysis/powerlaw_discrete.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "io/fit_io.hpp"
+#include "analysis/fit_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -158,7 +158,7 @@ TEST(PowerlawInput, DriverRefusesNonIntegersForTheDiscreteModelAndCountsXmaxExcl
 
 TEST(PowerlawInput, TextColumnCommentsAndBadLines) {
   std::istringstream good("# masses\n1.5\n\n  2.0  # second\n3e-1\r\nnan\ninf\n");
-  const auto v = io::read_number_column(good, "t");
+  const auto v = analysis::read_number_column(good, "t");
   ASSERT_EQ(v.size(), 5u);
   EXPECT_EQ(v[0], 1.5);
   EXPECT_EQ(v[2], 0.3);
@@ -166,7 +166,7 @@ TEST(PowerlawInput, TextColumnCommentsAndBadLines) {
   EXPECT_TRUE(std::isinf(v[4]));
   std::istringstream bad("1\nabc\n2 3\n4\n");
   try {
-    io::read_number_column(bad, "t.txt");
+    analysis::read_number_column(bad, "t.txt");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("t.txt: 2 lines are not a single number (first: line 2: 'abc')"), std::string::npos)
@@ -881,16 +881,16 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
     out.commit();
   }
   const auto root = io::open_input(frag);
-  EXPECT_EQ(io::fragments_min_cells(root), 2);
-  const auto in = io::read_fragment_values(root, "mass", 2);
+  EXPECT_EQ(analysis::fragments_min_cells(root), 2);
+  const auto in = analysis::read_fragment_values(root, "mass", 2);
   const auto singles = std::count(cells.begin(), cells.end(), 1);
   EXPECT_EQ(in.n_excluded_min_cells, singles);
   EXPECT_EQ(static_cast<std::int64_t>(in.values.size()) + singles, 400);
   EXPECT_EQ(in.unit, "kg");
   EXPECT_NEAR(in.mean_cell_mass(), 0.01, 0.01 * 0.05);  // cells of 0.01 kg × U(0.8, 1.2), the largest fragments dominating
-  const auto counts = io::read_fragment_values(root, "cell_count", 0);
+  const auto counts = analysis::read_fragment_values(root, "cell_count", 0);
   EXPECT_EQ(counts.values.size(), 400u);
-  EXPECT_THROW(io::read_fragment_values(root, "volume", 0), UsageError);
+  EXPECT_THROW(analysis::read_fragment_values(root, "volume", 0), UsageError);
 
   FitOptions opt;
   opt.bootstrap = 8, opt.gof_samples = 8, opt.cell_mass = in.mean_cell_mass();
@@ -901,12 +901,12 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   {
     io::OutputFile out(fit);
     io::write_header(out.root(), "fit", start_run("test", "test"), out.uuid());
-    io::write_fit(out.root(), r, in);
+    analysis::write_fit(out.root(), r, in);
     out.commit();
   }
   const auto froot = io::open_input(fit);
   EXPECT_EQ(io::check_header(froot, {"fit"}), "fit");
-  const auto b = io::read_fit(froot);
+  const auto b = analysis::read_fit(froot);
   EXPECT_EQ(b.primary, r.primary);
   ASSERT_EQ(b.mle.size(), r.mle.size());
   for (std::size_t i = 0; i < r.mle.size(); ++i) {
@@ -929,7 +929,7 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   EXPECT_EQ(froot.attr_string("unit", "fit/histogram/edges"), "kg");
   // Text output: key value lines, the primary's alpha unprefixed and beta = alpha stated.
   std::ostringstream text;
-  io::write_fit_text(text, r, in);
+  analysis::write_fit_text(text, r, in);
   EXPECT_NE(text.str().find("\nalpha " ), std::string::npos);
   EXPECT_NE(text.str().find("beta = alpha"), std::string::npos);
   EXPECT_NE(text.str().find("\nn_excluded_min_cells " + std::to_string(singles) + "\n"), std::string::npos);

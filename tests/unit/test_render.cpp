@@ -13,7 +13,7 @@
 #include "analysis/fragments.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "io/fragments_io.hpp"
+#include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
@@ -254,16 +254,16 @@ TEST(RenderPicture, FragmentsColourCells) {
   const auto frags_path = (dir / "fragments.h5").string();
   {
     const io::Group root = io::open_input(r.path);
-    const io::RunInfo info = io::read_dem_run_info(root);
-    const io::FragmentInput in = io::read_fragment_input(root, info, 1);
-    io::FragmentRecord rec;
+    const io::RunInfo info = analysis::read_dem_run_info(root);
+    const analysis::FragmentInput in = analysis::read_fragment_input(root, info, 1);
+    analysis::FragmentRecord rec;
     rec.frame = 1;
     rec.step = in.step;
     rec.time = in.time;
     rec.fragments = analysis::find_fragments(in.state());
     io::OutputFile out(frags_path);
     io::write_header(out.root(), "fragments", start_run("fragment-count", "fragment-count run.h5"), out.uuid());
-    io::write_fragments(out.root(), rec);
+    analysis::write_fragments(out.root(), rec);
     out.commit();
   }
   const io::Group root = io::open_input(r.path);
@@ -497,7 +497,7 @@ TEST(Xdmf, MeshSidecarAndFragments) {
   auto write_fragments = [&](const std::string& p, std::size_t cells) {
     io::OutputFile out(p);
     io::write_header(out.root(), "fragments", start_run("fragment-count", "fragment-count"), out.uuid());
-    io::FragmentRecord rec;
+    analysis::FragmentRecord rec;
     rec.fragments.cell_fragment.assign(cells, 0);
     rec.fragments.mass = {static_cast<double>(cells)};
     rec.fragments.cell_count = {static_cast<std::int64_t>(cells)};
@@ -505,7 +505,7 @@ TEST(Xdmf, MeshSidecarAndFragments) {
     rec.fragments.velocity = {0, 0};
     rec.fragments.kinetic_energy_translational = {0};
     rec.fragments.kinetic_energy_rotational = {0};
-    io::write_fragments(out.root(), rec);
+    analysis::write_fragments(out.root(), rec);
     out.commit();
   };
   write_fragments((dir / "f6.h5").string(), 6);

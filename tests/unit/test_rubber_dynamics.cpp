@@ -13,10 +13,12 @@
 #include "mesh/triangular_lattice.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/model.hpp"
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 #include "rubber_test_support.hpp"
 
 namespace {
+
+namespace mr = frac::mr;
 
 using namespace frac::rubber;
 using Eigen::Matrix2d;

@@ -16,11 +16,13 @@
 #include "rubber/bond_law.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/model.hpp"
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 #include "rubber_test_support.hpp"
 #include "rubber/probe.hpp"
 
 namespace {
+
+namespace mr = frac::mr;
 
 using namespace frac::rubber;
 using Eigen::Matrix2d;

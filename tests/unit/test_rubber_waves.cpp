@@ -11,11 +11,13 @@
 #include <numbers>
 
 #include "dynamics/integrator.hpp"
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 #include "rubber_test_support.hpp"
 #include "rubber/probe.hpp"
 
 namespace {
+
+namespace mr = frac::mr;
 
 using namespace frac::rubber;
 using Eigen::Matrix2d;

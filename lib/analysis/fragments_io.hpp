@@ -17,7 +17,7 @@
 #include "io/hdf5.hpp"
 #include "io/run_io.hpp"
 
-namespace frac::io {
+namespace frac::analysis {
 
 // One frame of a DEM run with what fragment counting needs: static masses and inertias, the beam
 // pairs, and the frame's centroids, velocities, angular velocities and intact flags.
@@ -28,20 +28,20 @@ struct FragmentInput {
   std::vector<double> mass, inertia, position, velocity, angular_velocity;
   std::vector<std::int64_t> beam;  // [2B]
   std::vector<std::uint8_t> intact;
-  analysis::CellState state() const {
+  CellState state() const {
     return {mass, inertia, position, velocity, angular_velocity, beam, intact};
   }
 };
 
 // The run's static data and frame list; InputError unless `root` is a DEM run (model "dem") whose
 // mass and inertia agree in length.
-RunInfo read_dem_run_info(const Group& root);
+io::RunInfo read_dem_run_info(const io::Group& root);
 // /connectivity/beams/pairs as [2B], checked to name cells 0..cells-1.
-std::vector<std::int64_t> read_beam_pairs(const Group& root, std::size_t cells);
+std::vector<std::int64_t> read_beam_pairs(const io::Group& root, std::size_t cells);
 // Frame `frame` (0 <= frame < frames) of /connectivity/beams/trajectory/intact, checked to hold `beams` flags.
-std::vector<std::uint8_t> read_beam_intact(const Group& root, std::int64_t frame, std::size_t beams);
+std::vector<std::uint8_t> read_beam_intact(const io::Group& root, std::int64_t frame, std::size_t beams);
 // Everything for frame `frame` (0 <= frame < info.step.size()), sizes checked against the masses.
-FragmentInput read_fragment_input(const Group& root, const RunInfo& info, std::int64_t frame);
+FragmentInput read_fragment_input(const io::Group& root, const io::RunInfo& info, std::int64_t frame);
 
 struct FragmentTimeSeries {
   std::vector<std::int64_t> step;
@@ -53,21 +53,21 @@ struct FragmentTimeSeries {
 
 // The fragment count and largest fragment mass of every frame of the run (only the intact flags
 // of each frame are read); `beam` as from read_beam_pairs.
-FragmentTimeSeries fragment_time_series(const Group& root, const RunInfo& info, std::span<const std::int64_t> beam,
-                                        std::int64_t min_cells);
+FragmentTimeSeries fragment_time_series(const io::Group& root, const io::RunInfo& info,
+                                        std::span<const std::int64_t> beam, std::int64_t min_cells);
 
 struct FragmentRecord {
   std::int64_t frame = 0, step = 0;
   double time = 0.0;
   std::int64_t min_cells = 1;
-  analysis::Fragments fragments;  // first_cell is not stored (recomputed on reading)
-  analysis::LogHistogram histogram;  // of the masses of the fragments of at least min_cells cells
+  Fragments fragments;  // first_cell is not stored (recomputed on reading)
+  LogHistogram histogram;  // of the masses of the fragments of at least min_cells cells
   FragmentTimeSeries time_series;  // written only when not empty
 };
 
 // Writes /fragments (the header is the caller's: kind "fragments").
-void write_fragments(Group& root, const FragmentRecord& r);
+void write_fragments(io::Group& root, const FragmentRecord& r);
 // Reads /fragments back; InputError naming the dataset when shapes disagree.
-FragmentRecord read_fragments(const Group& root);
+FragmentRecord read_fragments(const io::Group& root);
 
-}  // namespace frac::io
+}  // namespace frac::analysis

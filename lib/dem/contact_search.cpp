@@ -1,4 +1,4 @@
-#include "dem/contacts.hpp"
+#include "dem/contact_search.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,29 +11,6 @@ namespace frac::dem {
 namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 }  // namespace
-
-void ContactList::reserve(std::size_t count) {
-  if (count <= room()) return;
-  for (auto* a : {&i, &j}) a->resize(count);
-  for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &fn}) a->resize(count);
-  for (auto& a : term_power) a.resize(count);
-  for (auto& a : block_power) a.resize(count / kPowerBlock + 1);
-  pair_force.resize(count);
-}
-
-void ContactList::move_entries(std::size_t from, std::size_t to, std::size_t count) {
-  if (from == to || count == 0) return;
-  // (Ascending copies: safe for to < from, overlapping or not.)
-  for (auto* a : {&i, &j}) std::copy(a->begin() + from, a->begin() + from + count, a->begin() + to);
-  for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &fn})
-    std::copy(a->begin() + from, a->begin() + from + count, a->begin() + to);
-  std::copy(pair_force.begin() + from, pair_force.begin() + from + count, pair_force.begin() + to);
-}
-
-Range ContactList::mine() const {
-  if (blocks == static_cast<std::size_t>(thread_count())) return block[static_cast<std::size_t>(thread_index())];
-  return this_thread_range(size());
-}
 
 ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
     : mesh_(&mesh),
@@ -294,8 +271,6 @@ void ContactSearch::Fill::put(const PairContact& contact) {
   out->ny[k] = contact.ny;
   out->area[k] = contact.area;
   out->inv_lc[k] = contact.inv_lc;
-  out->fn[k] = 0.0;
-  out->pair_force[k] = {0.0, 0.0};
 }
 
 void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
@@ -444,186 +419,6 @@ void ContactSearch::find_end(ContactList& out) {
   out.candidate_pairs = candidates;
   out.enclosed = enclosed;
   out.multi_crossing = multi_crossing;
-}
-
-namespace {
-// The contact force terms `terms` (a set of contact_term_bit) on the contacts [first, last), each contact's
-// terms in engine order (damping adds to fn, which friction reads), in one pass over the list: per term, the
-// force on i of contact k (j receives its opposite, both applied at R_k) is added to the contact's slot
-// (c.pair_force), and its power, F·(v_i(R) − v_j(R)), written to the term's slot of the contact (summed by
-// contact_power in contact order: the same bits whatever the thread count). The velocities at R and the
-// effective mass are computed once per contact for the terms that use them: the same values as term by term.
-template <bool Elastic, bool Damping, bool Friction>
-void add_pair_forces(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                     std::span<const double> v, Range contacts) {
-  const std::size_t n = bodies.n;
-  const double* x = q.data();
-  const double* y = x + n;
-  const double* vx = v.data();
-  const double* vy = vx + n;
-  const double* w = vy + n;
-  const double* mass = bodies.mass.data();
-  PairForce* pf = c.pair_force.data();
-  double* power_elastic = c.term_power[static_cast<std::size_t>(ContactTerm::elastic)].data();
-  double* power_damping = c.term_power[static_cast<std::size_t>(ContactTerm::damping)].data();
-  double* power_friction = c.term_power[static_cast<std::size_t>(ContactTerm::friction)].data();
-  const double yh = p.grain_modulus * p.thickness;
-  for (std::size_t k = contacts.first; k < contacts.last; ++k) {
-    const auto i = static_cast<std::size_t>(c.i[k]), j = static_cast<std::size_t>(c.j[k]);
-    const double nx = c.nx[k], ny = c.ny[k];
-    // The velocities of i and j at R, v = v_c + ω ẑ×(R − c), and v_rel = v_j(R) − v_i(R).
-    const double rix = c.rx[k] - x[i], riy = c.ry[k] - y[i], rjx = c.rx[k] - x[j], rjy = c.ry[k] - y[j];
-    const double vix = vx[i] - w[i] * riy, viy = vy[i] + w[i] * rix;
-    const double vjx = vx[j] - w[j] * rjy, vjy = vy[j] + w[j] * rjx;
-    const double dvx = vix - vjx, dvy = viy - vjy;
-    [[maybe_unused]] const double vrx = vjx - vix, vry = vjy - viy;
-    [[maybe_unused]] const double m_eff = Damping || Friction ? mass[i] * mass[j] / (mass[i] + mass[j]) : 0.0;
-    auto add = [&](double fx, double fy, double* power) {
-      pf[k].fx += fx;
-      pf[k].fy += fy;
-      power[k] = fx * dvx + fy * dvy;
-    };
-    if constexpr (Elastic) {  // F_n = −Y·h·A/L_c along n
-      const double fn = -yh * c.area[k] * c.inv_lc[k];
-      c.fn[k] = fn;
-      add(fn * nx, fn * ny, power_elastic);
-    }
-    if constexpr (Damping) {  // + m_eff·γ_N·v_n along n
-      const double vn = vrx * nx + vry * ny;
-      const double fd = m_eff * p.gamma_n * vn;
-      c.fn[k] += fd;
-      add(fd * nx, fd * ny, power_damping);
-    }
-    if constexpr (Friction) {  // F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|) along t = ẑ × n
-      const double tx = -ny, ty = nx;
-      const double vt = vrx * tx + vry * ty;
-      const double ft = std::copysign(std::min(m_eff * p.gamma_t * std::abs(vt), p.friction * std::abs(c.fn[k])), vt);
-      add(ft * tx, ft * ty, power_friction);
-    }
-  }
-}
-
-// A term as a team of its own: each thread its part of the list, then the power summed.
-double run_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
-                std::span<const double> q, std::span<const double> v) {
-  as_team(c.size() > kMinParallelItems, [&] { contact_term(term, c, p, bodies, q, v, c.mine()); });
-  return contact_power(c, term);
-}
-}  // namespace
-
-void contact_term(ContactTerm term, ContactList& c, const ContactParameters& p, const Bodies& bodies,
-                  std::span<const double> q, std::span<const double> v, Range contacts) {
-  contact_terms(contact_term_bit(term), c, p, bodies, q, v, contacts);
-}
-
-void contact_terms(unsigned terms, ContactList& c, const ContactParameters& p, const Bodies& bodies,
-                   std::span<const double> q, std::span<const double> v, Range contacts) {
-  constexpr unsigned e = contact_term_bit(ContactTerm::elastic), d = contact_term_bit(ContactTerm::damping),
-                     f = contact_term_bit(ContactTerm::friction);
-  switch (terms & (e | d | f)) {
-    case e: add_pair_forces<true, false, false>(c, p, bodies, q, v, contacts); return;
-    case d: add_pair_forces<false, true, false>(c, p, bodies, q, v, contacts); return;
-    case f: add_pair_forces<false, false, true>(c, p, bodies, q, v, contacts); return;
-    case e | d: add_pair_forces<true, true, false>(c, p, bodies, q, v, contacts); return;
-    case e | f: add_pair_forces<true, false, true>(c, p, bodies, q, v, contacts); return;
-    case d | f: add_pair_forces<false, true, true>(c, p, bodies, q, v, contacts); return;
-    case e | d | f: add_pair_forces<true, true, true>(c, p, bodies, q, v, contacts); return;
-    default: return;
-  }
-}
-
-double contact_power(const ContactList& c, ContactTerm term) {
-  // (Grouped as contact_block_powers and contact_power_of_blocks group it: block_sums, core/parallel.hpp.)
-  const std::size_t count = c.size(), block = ContactList::kPowerBlock;
-  std::vector<double> sums(count / block + 1);
-  block_sums(c.term_power[static_cast<std::size_t>(term)].data(), count, block, Range{0, count}, sums.data());
-  return sum_of_blocks(sums.data(), count, block);
-}
-
-void contact_block_powers(ContactList& c, ContactTerm term, std::size_t count, Range mine) {
-  const auto k = static_cast<std::size_t>(term);
-  block_sums(c.term_power[k].data(), count, ContactList::kPowerBlock, mine, c.block_power[k].data());
-}
-
-double contact_power_of_blocks(const ContactList& c, ContactTerm term) {
-  return sum_of_blocks(c.block_power[static_cast<std::size_t>(term)].data(), c.size(), ContactList::kPowerBlock);
-}
-
-double contact_elastic(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                       std::span<const double> v) {
-  return run_term(ContactTerm::elastic, c, p, bodies, q, v);
-}
-
-double contact_damping(ContactList& c, const ContactParameters& p, const Bodies& bodies, std::span<const double> q,
-                       std::span<const double> v) {
-  return run_term(ContactTerm::damping, c, p, bodies, q, v);
-}
-
-double contact_friction(ContactList& c, const ContactParameters& p, const Bodies& bodies,
-                        std::span<const double> q, std::span<const double> v) {
-  return run_term(ContactTerm::friction, c, p, bodies, q, v);
-}
-
-void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {
-  add_contact_forces(c, c.size(), n, q, f, Range{0, n});
-}
-
-namespace {
-// The contacts [first_contact, last_contact) onto the cells of `cells`, in contact order.
-void add_contact_range(const ContactList& c, std::size_t first_contact, std::size_t last_contact, std::size_t n,
-                       std::span<const double> q, std::span<double> f, Range cells) {
-  // One pass over the list in contact order, adding to the cells of `cells` only: each cell receives its
-  // contacts in contact order, the same additions in the same order whatever the split. (Every thread reads
-  // the whole list but writes, and reads the positions of, its own cells only. A per-cell gather was slower.)
-  // The torques about c_i and c_j: τ_i = r_i × F, τ_j = −r_j × F, r = R − c.
-  const double* x = q.data();
-  const double* y = x + n;
-  double* fxa = f.data();
-  double* fya = fxa + n;
-  double* tz = fya + n;
-  const PairForce* pf = c.pair_force.data();
-  const std::int32_t *ci = c.i.data(), *cj = c.j.data();
-  const double *rx = c.rx.data(), *ry = c.ry.data();
-  const std::size_t first = cells.first, width = cells.last - cells.first;
-  for (std::size_t k = first_contact; k < last_contact; ++k) {
-    const auto i = static_cast<std::size_t>(ci[k]), j = static_cast<std::size_t>(cj[k]);
-    const double fx = pf[k].fx, fy = pf[k].fy;
-    if (i - first < width) {  // (unsigned: also false below `first`)
-      fxa[i] += fx;
-      fya[i] += fy;
-      tz[i] += (rx[k] - x[i]) * fy - (ry[k] - y[i]) * fx;
-    }
-    if (j - first < width) {
-      fxa[j] -= fx;
-      fya[j] -= fy;
-      tz[j] -= (rx[k] - x[j]) * fy - (ry[k] - y[j]) * fx;
-    }
-  }
-}
-
-}  // namespace
-
-void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f,
-                                Range blocks) {
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  const Range cells = this_thread_range(n);
-  for (std::size_t b = blocks.first; b < std::min(blocks.last, nt); ++b) {
-    const Range r = b == t ? c.block[b] : c.touch[b * nt + t];
-    add_contact_range(c, r.first, r.last, n, q, f, cells);
-  }
-}
-
-void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
-                        std::span<double> f, Range cells) {
-  add_contact_range(c, 0, count, n, q, f, cells);
-}
-
-void ContactList::clear_forces() {
-  const std::size_t count = size();
-  as_team(count > kMinParallelItems, [&] {
-    const Range mine = this_thread_range(count);
-    for (std::size_t k = mine.first; k < mine.last; ++k) pair_force[k] = {0.0, 0.0};
-  });
 }
 
 }  // namespace frac::dem

@@ -11,7 +11,7 @@
 #include "analysis/powerlaw.hpp"
 #include "io/hdf5.hpp"
 
-namespace frac::io {
+namespace frac::analysis {
 
 // The values to fit and where they came from.
 struct FitInput {
@@ -43,32 +43,29 @@ FitInput read_text_values(const std::string& path);
 
 // /fragments/<column> (mass or cell_count) of a file of kind "fragments"; with min_cells > 0, only fragments
 // of at least that many cells (the number left out is reported).
-FitInput read_fragment_values(const Group& root, const std::string& column, std::int64_t min_cells = 0);
+FitInput read_fragment_values(const io::Group& root, const std::string& column, std::int64_t min_cells = 0);
 // The min_cells attribute of /fragments (what fragment-count was asked to leave out of its histogram), 0 when
 // absent. Checks the header (kind "fragments") and that /fragments exists.
-std::int64_t fragments_min_cells(const Group& root);
+std::int64_t fragments_min_cells(const io::Group& root);
 
 // Does `path` ("-": standard input, peeked without consuming it) hold an HDF5 file? InputError when the file
 // is missing or standard input is empty.
 bool input_is_hdf5(const std::string& path);
 
 // Writes the /fit group (the header is the caller's: write_header(root, "fit", ...)).
-void write_fit(Group& root, const analysis::FitReport& report, const FitInput& input);
+void write_fit(io::Group& root, const FitReport& report, const FitInput& input);
 // Reads a /fit group back: estimators (fit, bootstrap and goodness-of-fit numbers), comparisons, histogram
 // and log-binned slope. InputError when the group is missing.
-analysis::FitReport read_fit(const Group& root);
+FitReport read_fit(const io::Group& root);
 
 // "key value" lines (docs/powerlaw-fit.md lists every key).
-void write_fit_text(std::ostream& out, const analysis::FitReport& report, const FitInput& input);
-// Writes text to `path` atomically (temporary file renamed into place), or to standard output for "-".
-void write_text_output(const std::string& path, const std::string& text);
-
+void write_fit_text(std::ostream& out, const FitReport& report, const FitInput& input);
 // Appends the values of `one` to `pooled` (the sample of several files): sources joined with " + ",
 // counts, masses and cells added, its size appended to input_sizes; the unit and column must agree
 // (InputError otherwise).
 void pool_into(FitInput& pooled, const FitInput& one);
 // The log-binned density histogram as CSV: the provenance line as a '#' comment, the header
 // center,density,count,lower,upper, the bins.
-void write_histogram_csv(std::ostream& out, const analysis::FitReport& report, const std::string& provenance);
+void write_histogram_csv(std::ostream& out, const FitReport& report, const std::string& provenance);
 
-}  // namespace frac::io
+}  // namespace frac::analysis

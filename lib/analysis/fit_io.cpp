@@ -1,4 +1,4 @@
-#include "io/fit_io.hpp"
+#include "analysis/fit_io.hpp"
 
 #include "io/atomic_file.hpp"
 
@@ -21,7 +21,9 @@
 #include "io/header.hpp"
 #include "io/provenance_text.hpp"
 
-namespace frac::io {
+namespace frac::analysis {
+// (The file formats are written with io's HDF5 and file layer throughout.)
+using namespace frac::io;
 
 using analysis::FitReport;
 
@@ -470,8 +472,6 @@ void write_fit_text(std::ostream& out, const FitReport& r, const FitInput& input
   }
 }
 
-void write_text_output(const std::string& path, const std::string& text) { write_file_atomically(path, text); }
-
 void pool_into(FitInput& pooled, const FitInput& one) {
   if (pooled.source.empty()) {
     pooled = one;
@@ -502,4 +502,4 @@ void write_histogram_csv(std::ostream& out, const analysis::FitReport& report, c
           << "\n";
 }
 
-}  // namespace frac::io
+}  // namespace frac::analysis

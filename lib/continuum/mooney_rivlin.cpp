@@ -1,9 +1,9 @@
-#include "rubber/mooney_rivlin.hpp"
+#include "continuum/mooney_rivlin.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace frac::rubber::mr {
+namespace frac::mr {
 
 namespace {
 Mat2 green(const Mat2& F) { return 0.5 * (F.transpose() * F - Mat2::Identity()); }
@@ -46,4 +46,4 @@ double lattice_B(double node_mass, double a, double b, double spacing) {
   return 9 * node_mass * a * b / (8 * d2 * d2);
 }
 
-}  // namespace frac::rubber::mr
+}  // namespace frac::mr

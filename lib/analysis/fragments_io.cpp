@@ -1,15 +1,19 @@
-#include "io/fragments_io.hpp"
+#include "analysis/fragments_io.hpp"
 
 #include <cmath>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/fragment_labels.hpp"
 #include "io/mesh_io.hpp"
 #include "io/series.hpp"
 
-namespace frac::io {
+namespace frac::analysis {
+// (The file formats are written with io's HDF5 and file layer throughout.)
+using namespace frac::io;
 namespace {
 
 constexpr const char* kCells = "particles/cells";
@@ -165,21 +169,18 @@ void write_fragments(Group& root, const FragmentRecord& r) {
 
 FragmentRecord read_fragments(const Group& root) {
   FragmentRecord r;
+  FragmentLabels labels = read_fragment_labels(root);
   const Group g = root.group("fragments");
-  r.frame = g.attr_int("frame");
-  r.step = g.attr_int("step");
-  r.time = g.attr_double("time");
+  r.frame = labels.frame;
+  r.step = labels.step;
+  r.time = labels.time;
   r.min_cells = g.attr_int("min_cells");
   auto& f = r.fragments;
   f.total_mass = g.attr_double("total_mass");
-  f.cell_fragment = g.read<std::int64_t>("cell_fragment", nullptr, 1);
-  f.mass = g.read<double>("mass", nullptr, 1);
+  f.cell_fragment = std::move(labels.cell_fragment);
+  f.mass = std::move(labels.mass);
+  f.cell_count = std::move(labels.cell_count);
   const std::size_t nf = f.mass.size();
-  if (g.attr_int("fragments") != static_cast<std::int64_t>(nf))
-    throw InputError(g.where() + ": attribute 'fragments' (" + std::to_string(g.attr_int("fragments")) +
-                     ") does not match the length of mass (" + std::to_string(nf) + ")");
-  f.cell_count = g.read<std::int64_t>("cell_count", nullptr, 1);
-  require_count(g, "cell_count", f.cell_count.size(), nf, "one per fragment");
   f.center_of_mass = g.read<double>("center_of_mass", nullptr, 2, 2);
   require_count(g, "center_of_mass", f.center_of_mass.size(), 2 * nf, "two per fragment");
   f.velocity = g.read<double>("velocity", nullptr, 2, 2);
@@ -188,20 +189,10 @@ FragmentRecord read_fragments(const Group& root) {
   require_count(g, "kinetic_energy_translational", f.kinetic_energy_translational.size(), nf, "one per fragment");
   f.kinetic_energy_rotational = g.read<double>("kinetic_energy_rotational", nullptr, 1);
   require_count(g, "kinetic_energy_rotational", f.kinetic_energy_rotational.size(), nf, "one per fragment");
-
-  // Labels in range, cell counts consistent with them; smallest cell of each fragment recomputed.
+  // The smallest cell of each fragment, recomputed (the labels are checked).
   f.first_cell.assign(nf, -1);
-  std::vector<std::int64_t> counted(nf, 0);
-  for (std::size_t i = 0; i < f.cell_fragment.size(); ++i) {
-    const auto id = f.cell_fragment[i];
-    if (id < 0 || static_cast<std::size_t>(id) >= nf)
-      throw InputError(g.where("cell_fragment") + ": cell " + std::to_string(i) + " has fragment " +
-                       std::to_string(id) + ", outside 0.." + std::to_string(static_cast<long long>(nf) - 1));
-    if (f.first_cell[id] < 0) f.first_cell[id] = static_cast<std::int64_t>(i);
-    ++counted[id];
-  }
-  if (counted != f.cell_count)
-    throw InputError(g.where("cell_count") + ": does not match the cells labelled in cell_fragment");
+  for (std::size_t i = f.cell_fragment.size(); i-- > 0;)
+    f.first_cell[static_cast<std::size_t>(f.cell_fragment[i])] = static_cast<std::int64_t>(i);
 
   const Group h = g.group("histogram");
   auto& hist = r.histogram;
@@ -240,4 +231,4 @@ FragmentRecord read_fragments(const Group& root) {
   return r;
 }
 
-}  // namespace frac::io
+}  // namespace frac::analysis

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-namespace frac::rubber::mr {
+namespace frac::mr {
 
 using Mat2 = Eigen::Matrix2d;
 using Vec2 = Eigen::Vector2d;
@@ -50,4 +50,4 @@ double node_mass(double rho, double spacing);
 double lattice_A(double node_mass, double a, double spacing);
 double lattice_B(double node_mass, double a, double b, double spacing);
 
-}  // namespace frac::rubber::mr
+}  // namespace frac::mr

@@ -1,0 +1,69 @@
+#include "rubber/run_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/header.hpp"
+#include "io/mesh_io.hpp"
+#include "io/output_file.hpp"
+#include "io/run_io.hpp"
+
+namespace frac::rubber {
+
+mesh::NodeMesh read_run_mesh(const io::Group& in, const std::string& name) {
+  io::check_header(in, {"mesh"});
+  if (io::mesh_kind(in) != io::MeshKind::nodes)
+    throw InputError(name + ": holds polygon cells; rubber-run needs a node mesh (mesh-gen triangular)");
+  return io::read_node_mesh(in);
+}
+
+RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh,
+                          const Scene& scene, ToolRun run, const io::Group& input, const std::string& output,
+                          Progress& progress) {
+  for (auto& d : setup.derived()) run.parameters.push_back(std::move(d));
+  io::add_input(run, input);
+  io::OutputFile out(output);
+  io::write_header(out.root(), "run", run, out.uuid());
+  out.root().group("parameters/rubber-run").write_strings("scene_text", {scene.source_text()});
+  const std::vector<double> mass(mesh.nodes(), setup.node_mass);
+  io::RunWriter writer(out.root(), mesh, mass);
+  const RubberSummary s = run_rubber(system, setup, &writer, progress);
+  out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
+  out.root().set_attr("end_time", s.time);
+  out.root().set_attr("stop_reason", s.stop_reason);
+  out.commit();
+  return s;
+}
+
+std::string summary_line(const RubberSummary& s, const RubberSystem& system, const RubberSetup& setup,
+                         const mesh::NodeMesh& mesh) {
+  std::ostringstream line;
+  line.precision(4);
+  line << s.steps << " steps of " << s.dt << " s to t = " << s.time << " s (" << s.stop_reason << "), " << s.events
+       << " bonds past u_c";
+  if (s.tip.found)
+    line << ", crack tip advanced " << (s.tip.reference_x - s.tip_start.reference_x) / mesh.spacing
+         << " spacings (last speed " << s.tip_speed << " m/s; lattice c_T " << setup.lattice_x.transverse << ", c_L "
+         << setup.lattice_x.longitudinal << " m/s along x)";
+  if (system.drive)
+    line << ", the driven seed cut " << s.driven << " bonds (knife's work " << s.drive_energy << " J)";
+  line << ", energy " << s.energy_start << " -> " << s.energy_end << " J, " << s.wall_seconds << " s wall ("
+       << s.ns_per_node_step() << " ns per node-step on " << system.model->threads() << " thread"
+       << (system.model->threads() > 1 ? "s" : "") << ")";
+  return line.str();
+}
+
+std::optional<std::string> energy_warning(const RubberSummary& s, const RubberScene& scene) {
+  const double change =
+      std::abs(s.energy_end - s.energy_start - s.drive_energy) / std::max(std::abs(s.energy_start), 1e-300);
+  if (scene.damping || !(change > 0.01)) return std::nullopt;
+  std::ostringstream m;
+  m << "the total energy changed by " << 100 * change
+    << "% without damping: the time step is too large for this scene (lower integrator.safety)";
+  return m.str();
+}
+
+}  // namespace frac::rubber
