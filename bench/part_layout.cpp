@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "core/parallel.hpp"
-#include "core/team_barrier.hpp"
 #include "dynamics/integrator.hpp"
 
 namespace {

@@ -2,32 +2,15 @@
 
 #include <omp.h>
 
-#include <string>
-#include <system_error>
-
-#include "core/error.hpp"
 #include "core/float_mode.hpp"
 
 namespace frac {
 
 int max_threads() { return omp_get_max_threads(); }
-int thread_count() {
-  const TeamMember& me = team_member();
-  return me.count != 0 ? static_cast<int>(me.count) : omp_get_num_threads();
-}
-int thread_index() {
-  const TeamMember& me = team_member();
-  return me.count != 0 ? static_cast<int>(me.index) : omp_get_thread_num();
-}
-bool in_parallel() { return team_member().count > 1 || omp_in_parallel() != 0; }
+int thread_count() { return omp_get_num_threads(); }
+int thread_index() { return omp_get_thread_num(); }
+bool in_parallel() { return omp_in_parallel() != 0; }
 unsigned processor_count() { return static_cast<unsigned>(omp_get_num_procs()); }
-
-void run_as_team(ThreadTeam::Job job, void* body) {
-  ThreadTeam& team = ThreadTeam::shared();
-  const auto threads = static_cast<unsigned>(max_threads());
-  if (team.size() != threads) team.resize(threads, processor_count());
-  team.run(job, body);
-}
 
 void HomeFirstSchedule::reserve(std::size_t threads) {
   if (threads <= capacity_) return;
@@ -65,15 +48,12 @@ std::size_t PartLayout::index(std::size_t i) const {
 void set_threads(int requested) {
   const int threads = requested > 0 ? requested : omp_get_num_procs();
   omp_set_num_threads(threads);
-  // Every thread of the team (the caller among them) in the simulation's floating-point mode: the caller first,
-  // then a new thread team, whose workers inherit it. (No OpenMP region: its idle threads would spin beside the
-  // team's for milliseconds.)
+  // Every thread of the regions (the caller among them) in the simulation's floating-point mode, set in each
+  // (OpenMP keeps its threads from region to region).
   flush_subnormals_to_zero();
-  ThreadTeam::shared().resize(1, 1);
-  try {
-    ThreadTeam::shared().resize(static_cast<unsigned>(threads), processor_count());
-  } catch (const std::system_error& e) {  // (the system's limit on threads, or on memory for their stacks)
-    throw RuntimeError("--threads " + std::to_string(threads) + ": cannot start that many threads (" + e.what() + ")");
+  if (threads > 1) {
+#pragma omp parallel
+    flush_subnormals_to_zero();
   }
 }
 

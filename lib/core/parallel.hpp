@@ -1,17 +1,13 @@
 #pragma once
-// Threading policy of the force loops (on a thread team of their own, core/thread_team.hpp; OpenMP only for its
-// `omp simd` loops): a loop runs in parallel only above this many items,
-// below it the fork and join cost more than the work. Each item writes its own slot; sums over items
+// Threading of the force loops, on OpenMP: a loop runs in parallel only above this many items, below it the
+// fork and join cost more than the work. Each item writes its own slot; sums over items
 // are done afterwards in item order, so results do not depend on the thread count.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <type_traits>
 #include <vector>
 
-#include "core/team_barrier.hpp"
-#include "core/thread_team.hpp"
 
 namespace frac {
 
@@ -23,9 +19,9 @@ inline constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
 
 // The thread queries, for code that splits work by hand. max_threads: the size of the teams as_team makes.
 int max_threads();
-int thread_count();  // threads of the enclosing team (core/thread_team.hpp) or OpenMP region; 1 outside both
+int thread_count();  // threads of the enclosing parallel region; 1 outside one
 int thread_index();  // this thread's number in it
-bool in_parallel();  // inside a team or an active OpenMP region (one with more than one thread)
+bool in_parallel();  // inside an active parallel region (one with more than one thread)
 unsigned processor_count();  // processors this process may run on
 
 // Sets the number of threads of the force loops' teams: `requested`, or every core for 0; and puts each of them,
@@ -72,24 +68,28 @@ inline double sum_of_blocks(const double* out, std::size_t count, std::size_t bl
 }
 
 // Team functions. The loops of one DEM force evaluation share one parallel region: each is a team function, run
-// by every thread of the team it is called from, each thread taking its part (static_range), with barriers
-// (team_barrier, core/team_barrier.hpp) only where a thread reads what another wrote, and serial parts on the
-// first thread (followed by a barrier when the others read what it wrote). Called outside any team, a team
-// function runs every part on the calling thread. (Never call one from a part only some threads run: the others
-// would not reach its barriers.)
-// as_team runs `body` as a team: on the team it is called from, or on the thread team (core/thread_team.hpp:
-// a region costs two spins on a shared counter, where OpenMP's makes system calls) when `worth` it (above the sizes
-// where threads pay off), so that a caller outside need not know. (Not worth it, or one thread: the caller alone.)
-// `body` must not throw (as in an OpenMP region, an exception ends the program).
-void run_as_team(ThreadTeam::Job job, void* body);
+// by every thread of the region it is called from, each thread taking its part (static_range), with barriers
+// (team_barrier) only where a thread reads what another wrote, and serial parts on the first thread (followed by
+// a barrier when the others read what it wrote). Called outside any region, a team function runs every part on
+// the calling thread. (Never call one from a part only some threads run: the others would not reach its
+// barriers.)
+// as_team runs `body` on every thread of a parallel region: the region it is called from, or a new one when
+// `worth` it (above the sizes where threads pay off), so that a caller outside need not know. (Not worth it, or
+// one thread: the caller alone.) `body` must not throw (an exception out of a parallel region ends the program).
 template <class Body>
 void as_team(bool worth, Body&& body) {
   if (in_parallel() || !worth || max_threads() == 1) {
     body();
     return;
   }
-  using B = std::remove_reference_t<Body>;
-  run_as_team([](void* b) noexcept { (*static_cast<B*>(b))(); }, const_cast<void*>(static_cast<const void*>(&body)));
+#pragma omp parallel
+  body();
+}
+
+// Inside a team function: returns when every thread of the region has called it, what each wrote before visible
+// to all after; nothing to wait for outside a region.
+inline void team_barrier() {
+#pragma omp barrier
 }
 
 // One value per thread of a team, each on its own cache line: each thread writes its own, and after a

@@ -52,12 +52,6 @@ class Beams {
   void strains(std::span<const double> q, std::span<double> out) const;
   // Breaks, for good, every intact beam that satisfies the rule at q; appends them to `broken`.
   void break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken);
-  // The same in parts, for a caller that runs it on its own team: before the team, reserve_breaks; a team
-  // function, find_breaks (each thread the verdicts of its part of the beams; no barrier at its end, and a
-  // barrier must come before it: it reads every cell); after the team, apply_breaks.
-  void reserve_breaks();
-  void find_breaks(std::span<const double> q, double t_eps, double t_theta);
-  void apply_breaks(std::vector<BeamBreak>& broken);
   // Breaks one beam (tests, and a scene's explicit cut).
   void remove(std::size_t b);
   // Marks every beam broken (a scene without beams: no cohesion, every cell its own fragment).
@@ -131,6 +125,11 @@ class Beams {
   };
   TeamSlots<std::vector<Breaking>> breaking_;
   std::size_t break_teams_ = 0;  // threads of the team of the last find_breaks
+  // break_beams in parts: reserve_breaks before the team; find_breaks, a team function (each thread the verdicts
+  // of its part of the beams); apply_breaks after it.
+  void reserve_breaks();
+  void find_breaks(std::span<const double> q, double t_eps, double t_theta);
+  void apply_breaks(std::vector<BeamBreak>& broken);
   std::size_t broken_in_active_ = 0;
   void compact_active();
 };

@@ -45,18 +45,6 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
 }
 
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
-  evaluate(t, q, v, a, nullptr);
-}
-
-bool Model::accelerations_around(double t, std::span<const double> q, std::span<const double> v,
-                                 std::span<double> a, StepLoops& loops) {
-  if (!prescribed_.empty()) return false;
-  evaluate(t, q, v, a, &loops);
-  return true;
-}
-
-void Model::evaluate(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
-                     StepLoops* loops) {
   const std::size_t n = size();
   double* force = force_.data();
   ++evaluations_;
@@ -66,23 +54,13 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
   const auto most = static_cast<std::size_t>(max_threads());
   if (contact_list) search_.reserve_threads(most, contacts_);
   zero_.reserve(most);
-  if (loops && break_after_steps_) beams_.reserve_breaks();
   const double* inv_mass = inv_mass_.data();
   double* acc = a.data();
-  // One parallel region (core/parallel.hpp: team functions), barriers only where a thread reads what another
-  // wrote. Each thread takes the same cells in every per-cell loop (static_range), so it finds the values
-  // where it left them, and the contacts it filled, for the contact terms.
-  // With the integrator's loops: its predictor first (each thread its coordinates, the same split as the
-  // per-cell loops here: the search's start reads this thread's cells alone), and its corrector last, once
-  // every force is known to be finite.
+  // One parallel region, barriers only where a thread reads what another wrote. Each thread takes the same cells
+  // in every per-cell loop (static_range), so it finds the values where it left them, and the contacts it
+  // filled, for the contact laws.
   as_team(bodies_.n > kMinParallelItems, [&] {
     const auto nt = static_cast<std::size_t>(thread_count());
-    if (loops) {
-      loops->predict();
-      if (loops->threads() != nt) {
-        team_barrier();
-      }
-    }
     if (!beams_on) {
       this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
 #pragma omp simd
@@ -91,8 +69,7 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
     }
     if (contact_list) search_.find_start(q, contacts_);  // (this thread's cells: their positions alone)
     team_barrier();
-    // (Every position predicted, every thread's part of the search started: the beams and the pairs read the
-    // other threads' cells.)
+    // (Every thread's part of the search started: the beams and the pairs read the other threads' cells.)
     if (beams_on) beams_.beam_pass(q);
     if (contact_list) {
       search_.find_finish(q, contacts_);  // (its barriers come after every beam's force)
@@ -139,23 +116,10 @@ void Model::evaluate(double t, std::span<const double> q, std::span<const double
       }
     });
     zero_.mine() = non_finite_seen(bad) ? 1.0 : 0.0;
-    if (loops) {
-      team_barrier();
-      bool finite = true;
-      for (std::size_t s = 0; s < nt; ++s) finite = finite && zero_[s] == 0.0;
-      if (finite) {
-        loops->correct();
-        if (break_after_steps_) {
-          team_barrier();
-          beams_.find_breaks(q, material_.t_eps, material_.t_theta);  // (at the corrected positions)
-        }
-      }
-    }
   });
   for (std::size_t l = 0; l < laws_.size(); ++l) law_power_[l] = law_power_of_blocks(contacts_, l);
   double zero = 0;
   for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
-  breaks_found_ = loops != nullptr && break_after_steps_ && zero == 0.0;
   // A non-finite force is traced to the first term that made it (the run stops at this step).
   if (zero != 0.0 && non_finite_term_.empty()) blame_non_finite(q, v);
   boundary_power_ = 0;
@@ -198,13 +162,6 @@ void Model::blame_non_finite(std::span<const double> q, std::span<const double> 
     add_contact_forces(contacts_, bodies_.n, q, force_);
     if (first_non_finite(laws_.names[l])) return;
   }
-}
-
-bool Model::take_breaks(std::vector<BeamBreak>& broken) {
-  if (!breaks_found_) return false;
-  beams_.apply_breaks(broken);
-  breaks_found_ = false;
-  return true;
 }
 
 void Model::prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const {

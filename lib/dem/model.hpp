@@ -46,8 +46,6 @@ class Model final : public dynamics::System {
 
   // dynamics::System
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
-  bool accelerations_around(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
-                            StepLoops& loops) override;
   std::size_t coordinate_blocks() const override { return 3; }  // x, y, φ of every cell
   std::span<const std::size_t> prescribed() const override { return prescribed_index_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
@@ -82,21 +80,10 @@ class Model final : public dynamics::System {
   const std::string& non_finite_term() const { return non_finite_term_; }
   std::size_t non_finite_index() const { return non_finite_index_; }
 
-  // The breaking pass after a step (the run's: Beams::break_beams at the corrected positions, thresholds of the
-  // material) run on the team of a step's evaluation when the integrator runs its loops there (a parallel region
-  // a step fewer): on, such a step finds the beams that break (after its corrector, behind a barrier), and
-  // take_breaks breaks them, appends them to `broken` and returns true; false, and nothing done, after a step
-  // that did not (its caller then calls break_beams).
-  void set_breaking_after_steps(bool on) { break_after_steps_ = on; }
-  bool take_breaks(std::vector<BeamBreak>& broken);
-
   // Kinetic energies at (q, v): translational, rotational, J.
   std::array<double, 2> kinetic_energy(std::span<const double> v) const;
 
  private:
-  // accelerations, with the integrator's loops around them on its team when `loops` is given.
-  void evaluate(double t, std::span<const double> q, std::span<const double> v, std::span<double> a,
-                StepLoops* loops);
   // After an evaluation whose forces are not all finite: the first term, and the coordinate, where they
   // became non-finite (non_finite_term_, non_finite_index_).
   void blame_non_finite(std::span<const double> q, std::span<const double> v);
@@ -120,7 +107,6 @@ class Model final : public dynamics::System {
   std::vector<std::size_t> prescribed_index_;
   std::vector<double> inv_mass_;  // per coordinate: 1/m, 1/m, 1/I
   TeamSlots<double> zero_;        // per thread of the evaluation's team: Σ F·0 over its coordinates
-  bool break_after_steps_ = false, breaks_found_ = false;
   std::size_t teams_ = 1;         // threads of that team
 };
 

@@ -134,7 +134,6 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   std::int64_t last_break_step = -1;
   const StopRule& stop = scene.stop;
   const bool breaking = model.physics().breaking;
-  model.set_breaking_after_steps(breaking);
   std::int64_t step = 0;
   for (;;) {
     integrator.step(model);
@@ -150,8 +149,7 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
       throw RuntimeError(blame_non_finite(model, integrator, step));
     if (breaking) {
       const std::size_t before = broken.size();
-      if (!model.take_breaks(broken))
-        model.beams().break_beams(integrator.q(), model.material().t_eps, model.material().t_theta, broken);
+      model.beams().break_beams(integrator.q(), model.material().t_eps, model.material().t_theta, broken);
       for (std::size_t k = before; k < broken.size(); ++k) {
         ledger.broken_energy += broken[k].energy;
         if (writer)

@@ -1,7 +1,6 @@
 #include "dynamics/integrator.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -280,65 +279,38 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
   return non_finite_seen(bad) ? 1 : 0;
 }
 
-// The step's loops over this thread's parts of the coordinates (PartLayout: r_[1..5] shifted), as a system runs
-// them on its team (System::StepLoops) or the step on teams of their own. The corrector records, per thread,
-// whether a value it wrote is not finite.
-struct Gear5::Loops final : System::StepLoops {
-  double *r0, *r1, *r2, *r3, *r4, *r5, *v;
-  const double* a;
-  double inv_dt, half_dt2;
-  const PartLayout* layout;
-  TeamSlots<int>* bad;
-  std::atomic<bool> corrected{false};
-  std::size_t threads() const override { return layout->threads(); }
-  void predict() override {
-    layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-      gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
-    });
-  }
-  void correct() override {
-    int mine = 0;
-    layout->this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-      mine |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
-    });
-    bad->mine() = mine;
-    corrected.store(true, std::memory_order_relaxed);
-  }
-};
-
 void Gear5::step(System& system) {
   const auto most = static_cast<std::size_t>(max_threads());
   bad_.reserve(most);
-  for (std::size_t t = 0; t < most; ++t) bad_[t] = 0;
-  Loops loops;
-  loops.r0 = r_[0].data();
-  loops.r1 = r_[1].data();
-  loops.r2 = r_[2].data();
-  loops.r3 = r_[3].data();
-  loops.r4 = r_[4].data();
-  loops.r5 = r_[5].data();
-  loops.v = v_.data();
-  loops.a = a_.data();
-  loops.inv_dt = 1.0 / dt_;
-  loops.half_dt2 = 0.5 * dt_ * dt_;
-  loops.layout = &layout_;
-  loops.bad = &bad_;
-  // On the system's team when it runs them (none prescribed), else each loop on a team of its own (when the
-  // layout has more than one thread) around the evaluation.
+  double* r0 = r_[0].data();
+  double *r1 = r_[1].data(), *r2 = r_[2].data(), *r3 = r_[3].data(), *r4 = r_[4].data(), *r5 = r_[5].data();
+  double* v = v_.data();
+  const double* a = a_.data();
+  const double inv_dt = 1.0 / dt_, half_dt2 = 0.5 * dt_ * dt_;
+  // Each loop on the threads' parts of the coordinates (PartLayout: r_[1..5] shifted), split as the system splits
+  // its cells.
   const bool team = layout_.threads() > 1;
-  const bool fixed = !system.prescribed().empty();
-  if (fixed || !team || !system.accelerations_around(t_ + dt_, r_[0], v_, a_, loops)) {
-    as_team(team, [&] { loops.predict(); });
-    apply_prescribed(system, t_ + dt_);
-    system.accelerations(t_ + dt_, r_[0], v_, a_);
-    as_team(team, [&] { loops.correct(); });
-    apply_prescribed(system, t_ + dt_);
-  }
+  std::size_t threads = 1;
+  as_team(team, [&] {
+    layout_.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+      gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
+    });
+  });
+  apply_prescribed(system, t_ + dt_);
+  system.accelerations(t_ + dt_, r_[0], v_, a_);
+  as_team(team, [&] {
+    int bad = 0;
+    layout_.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+      bad |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
+    });
+    bad_.mine() = bad;
+    if (thread_index() == 0) threads = static_cast<std::size_t>(thread_count());
+  });
+  apply_prescribed(system, t_ + dt_);
   t_ += dt_;
   int bad = 0;
-  for (std::size_t t = 0; t < most; ++t) bad |= bad_[t];
-  // (Not corrected: a force was not finite, the state is the predicted one.)
-  finite_ = bad == 0 && loops.corrected.load(std::memory_order_relaxed);
+  for (std::size_t t = 0; t < threads; ++t) bad |= bad_[t];
+  finite_ = bad == 0;
   ++steps_;
 }
 

@@ -34,29 +34,6 @@ class System {
   virtual std::size_t coordinate_blocks() const { return 1; }
   virtual void prescribe(double /*t*/, std::span<double> /*q*/, std::span<double> /*v*/,
                          std::span<double> /*a*/) const {}
-  // The integrator's per-coordinate loops of one step, for a system that runs them on the team of threads of its
-  // own evaluation (two thread starts a step fewer): each thread calls predict() first, on its part of the
-  // coordinates (the same split as coordinate_blocks' loops), and the evaluation reads the predicted state of
-  // another thread's coordinates only after a barrier; correct() last, each thread after the accelerations of its part, and only if every
-  // force is finite (after another barrier: a system that names the term that made a non-finite force needs the
-  // predicted state).
-  class StepLoops {
-   public:
-    virtual void predict() = 0;
-    virtual void correct() = 0;
-    // The team size whose split the loops follow (in a team of another size, a thread's part of the coordinates
-    // is not its part of the cells: a barrier must follow the predictor).
-    virtual std::size_t threads() const = 0;
-
-   protected:
-    ~StepLoops() = default;
-  };
-  // Accelerations at (t, q, v) into a, as accelerations(), with `loops` run around them on its team; returns
-  // whether it ran them (the default: no, and nothing was done). Not for a system that prescribes coordinates.
-  virtual bool accelerations_around(double /*t*/, std::span<const double> /*q*/, std::span<const double> /*v*/,
-                                    std::span<double> /*a*/, StepLoops& /*loops*/) {
-    return false;
-  }
 };
 
 enum class IntegratorKind { gear5, verlet };
@@ -171,7 +148,6 @@ class Gear5 final : public Integrator {
 
  private:
   void apply_prescribed(const System& system, double t);
-  struct Loops;          // the step's predictor and corrector (integrator.cpp)
   TeamSlots<int> bad_;  // per thread: whether a corrected value it wrote is not finite
   // Scaled derivatives r_k = dt^k/k! · d^k q/dt^k: r_[0] = q in the system's layout, r_[1..5] (which only the
   // step's loops touch) in layout_, the threads' parts apart (core/parallel.hpp: PartLayout).

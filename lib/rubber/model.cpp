@@ -1,18 +1,27 @@
 #include "rubber/model.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 namespace frac::rubber {
+namespace {
+// [begin, end) of `n` items for `worker` of `workers`, in contiguous blocks.
+std::pair<std::size_t, std::size_t> worker_range(std::size_t n, int worker, int workers) {
+  const auto w = static_cast<std::size_t>(worker), k = static_cast<std::size_t>(workers);
+  return {n * w / k, n * (w + 1) / k};
+}
+}  // namespace
 
 Model::Model(Lattice lattice, ModelOptions options)
     : lattice_(std::move(lattice)), options_(std::move(options)) {
   const int threads = std::min(options_.threads <= 0 ? 0 : options_.threads, ForceContext::kMaxWorkers);
-  pool_ = std::make_unique<ThreadPool>(threads);
-  if (pool_->size() > ForceContext::kMaxWorkers) pool_ = std::make_unique<ThreadPool>(ForceContext::kMaxWorkers);
+  threads_ = std::min(threads > 0 ? threads : static_cast<int>(processor_count()), ForceContext::kMaxWorkers);
   passes_ = select_passes(options_.law, options_.damping);
 
   const std::size_t n = lattice_.n, nb = lattice_.bonds();
@@ -73,22 +82,22 @@ Model::Model(Lattice lattice, ModelOptions options)
 }
 
 std::pair<std::size_t, std::size_t> Model::rows_of(int worker, int workers) const {
-  return ThreadPool::range(rows_, worker, workers);
+  return worker_range(rows_, worker, workers);
 }
 
 void Model::job_bonds(void* m, int worker, int workers) {
   Model& M = *static_cast<Model*>(m);
-  const auto [i0, i1] = ThreadPool::range(M.lattice_.n, worker, workers);
+  const auto [i0, i1] = worker_range(M.lattice_.n, worker, workers);
   M.passes_.bonds(M.ctx_, i0, i1, worker);
 }
 void Model::job_centres(void* m, int worker, int workers) {
   Model& M = *static_cast<Model*>(m);
-  const auto [i0, i1] = ThreadPool::range(M.lattice_.n, worker, workers);
+  const auto [i0, i1] = worker_range(M.lattice_.n, worker, workers);
   M.passes_.centres(M.ctx_, i0, i1);
 }
 void Model::job_gather(void* m, int worker, int workers) {
   Model& M = *static_cast<Model*>(m);
-  const auto [i0, i1] = ThreadPool::range(M.lattice_.n, worker, workers);
+  const auto [i0, i1] = worker_range(M.lattice_.n, worker, workers);
   M.passes_.gather(M.ctx_, i0, i1, worker);
 }
 
@@ -125,13 +134,13 @@ void Model::job_fused_c(void* m, int worker, int workers) {
 void Model::job_energy(void* m, int worker, int workers) {
   Model& M = *static_cast<Model*>(m);
   const std::size_t blocks = M.blocks_.size() / 4;
-  const auto [k0, k1] = ThreadPool::range(blocks, worker, workers);
+  const auto [k0, k1] = worker_range(blocks, worker, workers);
   M.passes_.energy(M.ctx_, k0, k1);
 }
 void Model::job_virial(void* m, int worker, int workers) {
   Model& M = *static_cast<Model*>(m);
   const std::size_t blocks = M.blocks_.size() / 4;
-  const auto [k0, k1] = ThreadPool::range(blocks, worker, workers);
+  const auto [k0, k1] = worker_range(blocks, worker, workers);
   virial_blocks(M.ctx_, k0, k1);
 }
 
@@ -244,7 +253,14 @@ void Model::bind(std::span<const double> q, std::span<const double> v, std::span
   ctx_.track = track;
 }
 
-void Model::run(ThreadPool::Job job) { pool_->run(job, this); }
+void Model::run(Job job) {
+  if (threads_ == 1) {
+    job(this, 0, 1);
+    return;
+  }
+#pragma omp parallel num_threads(threads_)
+  job(this, omp_get_thread_num(), omp_get_num_threads());
+}
 
 void Model::accelerations(double, std::span<const double> q, std::span<const double> v, std::span<double> a) {
   bind(q, v, a, true);

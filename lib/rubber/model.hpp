@@ -28,7 +28,6 @@
 #include "rubber/bond_law.hpp"
 #include "rubber/forces.hpp"
 #include "rubber/lattice.hpp"
-#include "rubber/thread_pool.hpp"
 
 namespace frac::rubber {
 
@@ -62,7 +61,7 @@ class Model final : public dynamics::System {
   const ModelOptions& options() const { return options_; }
   std::size_t nodes() const { return lattice_.n; }
   double node_mass() const { return options_.node_mass; }
-  int threads() const { return pool_->size(); }
+  int threads() const { return threads_; }
   bool fused() const { return fused_; }
 
   // Periodic boxes: image shifts of the wrap bonds for a box deformed homogeneously by F (lab shift =
@@ -120,9 +119,13 @@ class Model final : public dynamics::System {
 
  private:
   void bind(std::span<const double> q, std::span<const double> v, std::span<double> a, bool track);
-  void run(ThreadPool::Job job);
+  // Runs job(this, worker, workers) on every thread of a parallel region of threads() threads (the caller alone
+  // for one). A job splits its work by worker (worker_range): every node's result is computed by the same
+  // instructions whichever thread runs it, so the thread count never changes a bit of the result.
+  using Job = void (*)(void* model, int worker, int workers);
+  void run(Job job);
   void evaluate();  // bonds, centres and gather at the bound state
-  // Jobs for the pool (context: the model).
+  // The jobs.
   static void job_bonds(void* m, int worker, int workers);
   static void job_centres(void* m, int worker, int workers);
   static void job_gather(void* m, int worker, int workers);
@@ -135,7 +138,7 @@ class Model final : public dynamics::System {
 
   Lattice lattice_;
   ModelOptions options_;
-  std::unique_ptr<ThreadPool> pool_;
+  int threads_ = 1;
   ForcePasses passes_;
   ForceContext ctx_;
   std::vector<std::uint8_t> status_, past_;

@@ -14,8 +14,6 @@
 #include "core/finite.hpp"
 #include "core/float_mode.hpp"
 #include "core/parallel.hpp"
-#include "core/team_barrier.hpp"
-#include "core/thread_team.hpp"
 
 namespace {
 
@@ -232,36 +230,8 @@ TEST(Parallel, NonFiniteBitMarksOnlyNaNAndInfinity) {
   }
 }
 
-// The team barrier (core/team_barrier.hpp): after the k-th barrier every thread sees what every other wrote
-// before it, and none has yet written what comes after it; through both of its ways of waiting: spinning (a
-// core for each thread) and sleeping (more threads than cores: a thread that has spun a little sleeps, and the
-// last to arrive wakes it). 2000 rounds of two barriers each: a lost wake-up would hang the test.
-TEST(Parallel, TeamBarrierSeparatesTheRounds) {
-  for (const unsigned threads : {2u, 3u}) {
-    for (const unsigned cores : {threads, 1u}) {  // (cores < threads: the sleeping way, on any machine)
-      frac::TeamBarrier barrier(threads, cores);
-      constexpr int kRounds = 2000;
-      std::vector<std::atomic<int>> written(threads);
-      std::atomic<int> wrong{0};
-#pragma omp parallel num_threads(static_cast<int>(threads))
-      {
-        if (static_cast<unsigned>(frac::thread_count()) == threads) {
-          const auto t = static_cast<std::size_t>(frac::thread_index());
-          for (int k = 1; k <= kRounds; ++k) {
-            written[t].store(k, std::memory_order_relaxed);
-            barrier.wait();
-            for (std::size_t u = 0; u < threads; ++u)
-              if (written[u].load(std::memory_order_relaxed) != k) wrong.fetch_add(1);
-            barrier.wait();
-          }
-        }
-      }
-      EXPECT_EQ(wrong.load(), 0) << threads << " threads on " << cores << " cores";
-    }
-  }
-}
-
-// as_team's teams use it through team_barrier, and a region not made by as_team gets OpenMP's barrier.
+// team_barrier in as_team's regions and in other OpenMP regions: after the k-th barrier every thread sees what
+// every other wrote before it.
 TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
   const int before = frac::max_threads();
   for (const int threads : {2, 3}) {
@@ -292,44 +262,6 @@ TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
     frac::team_barrier();  // (outside any region: nothing to wait for)
   }
   frac::set_threads(before);
-}
-
-// The thread team (core/thread_team.hpp): every run runs the job once on each of its threads, the caller as
-// thread 0, each with its own index and the team's size, and returns only when all are done (what they wrote is
-// seen after); after runs far apart (the workers asleep: 20 ms is far beyond their spinning), with more threads
-// than cores, and after resizing.
-TEST(Parallel, ThreadTeamRunsTheJobOnEveryThreadOnce) {
-  frac::ThreadTeam team;
-  for (const unsigned threads : {1u, 2u, 3u, 2u}) {
-    for (const unsigned cores : {threads, 1u}) {
-      team.resize(threads, cores);
-      ASSERT_EQ(team.size(), threads);
-      struct Context {
-        std::vector<std::atomic<int>> runs;
-        std::vector<unsigned> count;
-        std::thread::id caller;
-        std::atomic<int> caller_was_zero{0};
-      } c{std::vector<std::atomic<int>>(threads), std::vector<unsigned>(threads, 0), std::this_thread::get_id(), {}};
-      for (int round = 1; round <= 300; ++round) {
-        if (round % 100 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        team.run(
-            [](void* p) {
-              auto& ctx = *static_cast<Context*>(p);
-              const frac::TeamMember& me = frac::team_member();
-              ctx.runs[me.index].fetch_add(1);
-              ctx.count[me.index] = me.count;
-              if (std::this_thread::get_id() == ctx.caller && me.index == 0) ctx.caller_was_zero.fetch_add(1);
-            },
-            &c);
-        for (unsigned t = 0; t < threads; ++t) {
-          ASSERT_EQ(c.runs[t].load(), round) << threads << " threads on " << cores << " cores, thread " << t;
-          ASSERT_EQ(c.count[t], threads);
-        }
-      }
-      EXPECT_EQ(c.caller_was_zero.load(), 300);
-      EXPECT_EQ(frac::team_member().count, 0u);  // (the caller is no member once the run is over)
-    }
-  }
 }
 
 }  // namespace
