@@ -2,12 +2,12 @@
 # Two builds of dem-run compared on the rows of bench/dem_run.sh: the full model (contacts, damping, friction,
 # breaking) or the beams alone, at 10^4 or 10^5 cells, on one thread or more. Not part of `make bench`: it needs
 # two binaries. Usage:
-#   bench/compare-dem-model.sh OLD_DEM_RUN NEW_DEM_RUN   (MODEL=full|beams, CELLS=100x100|316x316, THREADS=1,
-#                                                          REPEATS=9)
-# The cost of a step is the time of 800 steps minus that of 400 (set-up and output do not count), in ns per
-# cell-step: CPU time on one thread, wall time on more. The machine is shared and its pace changes from minute to minute, so the two binaries run
+#   bench/compare-dem-model.sh OLD_DEM_RUN NEW_DEM_RUN   (MODEL=full|beams, SIDE=100|316 cells a side (1 cm
+#                                                          each), STEPS=400, THREADS=1, REPEATS=9)
+# The cost of a step is the time of 2·STEPS steps minus that of STEPS (set-up and output do not count), in ns
+# per cell-step: CPU time on one thread, wall time on more. The machine is shared and its pace changes from minute to minute, so the two binaries run
 # alternately, round by round (the order swapped every round); quote the median of the per-round ratios
-# new/old. Also says whether the two runs' outputs after 800 steps are the same bit for bit (h5diff,
+# new/old. Also says whether the two runs' outputs after 2·STEPS steps are the same bit for bit (h5diff,
 # provenance and version aside).
 set -euo pipefail
 old=${1:?usage: bench/compare-dem-model.sh OLD_DEM_RUN NEW_DEM_RUN}
@@ -15,8 +15,9 @@ new=${2:?usage: bench/compare-dem-model.sh OLD_DEM_RUN NEW_DEM_RUN}
 repeats=${REPEATS:-9}
 threads=${THREADS:-1}
 model_name=${MODEL:-full}
-cells_xy=${CELLS:-100x100}
-cells=$((${cells_xy%x*} * ${cells_xy#*x}))
+side=${SIDE:-100}
+steps=${STEPS:-400}
+cells=$((side * side))
 out=bench/out
 mkdir -p "$out"
 # shellcheck source=bench/lib.sh
@@ -24,7 +25,8 @@ source "$(dirname "$0")/lib.sh"  # time_once, median_of, same_bits
 require_gnu_time
 mesh_gen=$(dirname "$new")/mesh-gen
 [[ -x $mesh_gen ]] || mesh_gen=build/tools/mesh-gen
-"$mesh_gen" voronoi --shape rect --size 1x1 --cells "$cells_xy" --seed 1 -q -o "$out/fm-mesh.h5"
+size=$(awk -v n="$side" 'BEGIN { print n * 0.01 }')
+"$mesh_gen" voronoi --shape rect --size "${size}x${size}" --cells "${side}x${side}" --seed 1 -q -o "$out/fm-mesh.h5"
 # The models of bench/dem_run.sh.
 case $model_name in
   full) model=(--physics.contacts on --physics.breaking on --physics.friction on --physics.damping on
@@ -37,18 +39,18 @@ model+=(--output.frame_interval 1 --output.observe_every 1000000 --stop.t_max 1 
 # The time a run measures: CPU on one thread, wall on more.
 field=2
 ((threads > 1)) && field=1
-# cpu_of BIN NAME: "T400 T800", the seconds (CPU or wall) of 400 and of 800 steps; the 800-step output goes to
-# $out/fm-NAME.h5.
+# cpu_of BIN NAME: "T1 T2", the seconds (CPU or wall) of STEPS and of 2·STEPS steps; the longer run's output goes
+# to $out/fm-NAME.h5.
 cpu_of() {
   local t400 t800
   t400=$(time_once "$1" --threads "$threads" --scene data/scenes/pulse.ini "$out/fm-mesh.h5" -q \
-    -o "$out/fm-$2-400.h5" "${model[@]}" --stop.max_steps 400 | cut -d' ' -f"$field")
+    -o "$out/fm-$2-short.h5" "${model[@]}" --stop.max_steps "$steps" | cut -d' ' -f"$field")
   t800=$(time_once "$1" --threads "$threads" --scene data/scenes/pulse.ini "$out/fm-mesh.h5" -q \
-    -o "$out/fm-$2.h5" "${model[@]}" --stop.max_steps 800 | cut -d' ' -f"$field")
+    -o "$out/fm-$2.h5" "${model[@]}" --stop.max_steps $((2 * steps)) | cut -d' ' -f"$field")
   echo "$t400 $t800"
 }
-# ns_between T400 T800: ns per cell-step of steps 400-800.
-ns_between() { awk -v a="$1" -v b="$2" -v n="$cells" 'BEGIN { printf "%.1f", (b - a) / (n * 400) * 1e9 }'; }
+# ns_between T1 T2: ns per cell-step of steps STEPS to 2·STEPS.
+ns_between() { awk -v a="$1" -v b="$2" -v n="$cells" -v s="$steps" 'BEGIN { printf "%.1f", (b - a) / (n * s) * 1e9 }'; }
 ns_old=() ns_new=() ratios=() short_old=() long_old=() short_new=() long_new=()
 for ((r = 0; r < repeats; r++)); do
   if ((r % 2)); then
@@ -71,8 +73,8 @@ same=$(same_bits "$out/fm-old.h5" "$out/fm-new.h5")
 least() { printf '%s\n' "$@" | sort -g | head -1; }
 fastest_old=$(ns_between "$(least "${short_old[@]}")" "$(least "${long_old[@]}")")
 fastest_new=$(ns_between "$(least "${short_new[@]}")" "$(least "${long_new[@]}")")
-echo "dem-run $model_name model, $cells cells, $threads thread(s), steps 400-800, ns per cell-step, $repeats rounds," \
-  "$(date -u +%Y-%m-%d)"
+echo "dem-run $model_name model, $cells cells, $threads thread(s), steps $steps-$((2 * steps)), ns per cell-step," \
+  "$repeats rounds, $(date -u +%Y-%m-%d)"
 echo
 echo "| old: median, fastest | new: median, fastest | new/old, median of rounds | same bits |"
 echo "|---|---|---|---|"
