@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geometry/overlap.hpp"
+#include "geometry/separation.hpp"
 #include "io/hdf5.hpp"
 #include "io/mesh_io.hpp"
 #include "io/run_io.hpp"

@@ -12,27 +12,6 @@ int thread_index() { return omp_get_thread_num(); }
 bool in_parallel() { return omp_in_parallel() != 0; }
 unsigned processor_count() { return static_cast<unsigned>(omp_get_num_procs()); }
 
-void HomeFirstSchedule::reserve(std::size_t threads) {
-  if (threads <= capacity_) return;
-  cursor_ = std::make_unique<Cursor[]>(threads);
-  capacity_ = threads;
-}
-
-void HomeFirstSchedule::set(std::size_t t, std::size_t items, std::size_t nt) {
-  const Range r = static_range(items, t, nt);
-  cursor_[t].first = r.first;
-  cursor_[t].end = r.last;
-  cursor_[t].span.store(static_cast<std::uint64_t>(r.last - r.first), std::memory_order_relaxed);
-}
-
-void HomeFirstSchedule::start_mine(std::size_t items) {
-  set(static_cast<std::size_t>(thread_index()), items, static_cast<std::size_t>(thread_count()));
-}
-
-void HomeFirstSchedule::reset(std::size_t items, std::size_t nt) {
-  for (std::size_t t = 0; t < nt; ++t) set(t, items, nt);
-}
-
 PartLayout::PartLayout(std::size_t n, std::size_t blocks, std::size_t threads)
     : n_(n), blocks_(blocks == 0 || n % blocks != 0 ? 1 : blocks), threads_(threads == 0 ? 1 : threads) {
   len_ = n_ / blocks_;

@@ -2,7 +2,6 @@
 // Threading of the force loops, on OpenMP: a loop runs in parallel only above this many items, below it the
 // fork and join cost more than the work. Each item writes its own slot; sums over items
 // are done afterwards in item order, so results do not depend on the thread count.
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -110,60 +109,6 @@ class TeamSlots {
     T value{};
   };
   std::vector<Slot> slot_;
-};
-
-// Work sharing with locality, for loops whose items cost unevenly (the contact pairs: clipping costs ten
-// times a separation test): the items are dealt out as a static schedule deals them (static_range), so a
-// thread mostly works on the cells it integrated and reads data it wrote, in its own cache. It takes its own
-// in chunks from the front, in order; a thread done with its own helps the others, taking their chunks from
-// the back. So each thread runs a prefix of its part, in order (up to split(t)), and the others the rest: what
-// the prefix makes can go straight where it belongs, in order. Each item runs once, on one thread; when each
-// writes its own slot, which thread does not change any result.
-class HomeFirstSchedule {
- public:
-  // Inside a parallel region, by every thread: this thread's cursor over `items` (a barrier must come before
-  // run); or every thread's cursor, set by one thread of a team of nt (likewise).
-  void start_mine(std::size_t items);
-  void reset(std::size_t items, std::size_t nt);
-  // Inside the region, after the cursors are set: body(first, last, own) on chunks of at most `chunk` items
-  // until none is left; own: the chunk is of this thread's part (taken from its front).
-  template <class Body>
-  void run(std::size_t chunk, Body&& body) {
-    const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-    for (std::size_t s = 0; s < nt; ++s) {
-      Cursor& c = cursor_[t + s < nt ? t + s : t + s - nt];
-      const bool own = s == 0;
-      std::uint64_t span = c.span.load(std::memory_order_relaxed);
-      for (;;) {
-        const std::uint64_t front = span >> 32, back = span & 0xffffffffu;
-        if (front >= back) break;
-        const std::uint64_t take = back - front < chunk ? back - front : chunk;
-        const std::uint64_t next = own ? (front + take) << 32 | back : front << 32 | (back - take);
-        if (!c.span.compare_exchange_weak(span, next, std::memory_order_relaxed)) continue;
-        const std::size_t first = c.first + (own ? front : back - take);
-        body(first, first + take, own);
-        span = next;  // (a guess; the exchange corrects it)
-      }
-    }
-  }
-  // After the run and a barrier: thread t's part [first(t), end(t)), of which it ran [first(t), split(t)).
-  std::size_t first(std::size_t t) const { return cursor_[t].first; }
-  std::size_t split(std::size_t t) const {
-    return cursor_[t].first + (cursor_[t].span.load(std::memory_order_relaxed) >> 32);
-  }
-  std::size_t end(std::size_t t) const { return cursor_[t].end; }
-  // Before the region (outside the time loop's steady state: allocates when the thread count grows).
-  void reserve(std::size_t threads);
-
- private:
-  struct alignas(64) Cursor {
-    // (front, back) of what is left, from `first`: front << 32 | back (a part of fewer than 2^32 items)
-    std::atomic<std::uint64_t> span{0};
-    std::size_t first = 0, end = 0;
-  };
-  void set(std::size_t t, std::size_t items, std::size_t nt);
-  std::unique_ptr<Cursor[]> cursor_;
-  std::size_t capacity_ = 0;
 };
 
 // The per-coordinate loops over n = blocks·len coordinates laid out in `blocks` equal blocks (the DEM: x of

@@ -8,10 +8,15 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "geometry/overlap_lines.hpp"
 #include "geometry/polygon.hpp"
 
 namespace frac::geometry {
 namespace {
+using detail::OverlapFrame;
+using detail::kMaxRegularVertices;
+using detail::line_normal;
+using detail::regular_vertices;
 
 // The clipper's working polygon: vertex k and the label of its edge k -> k+1, which names the
 // original edge the edge lies on: 0..n-1 an edge of P_i, n + b edge b of P_j. Room for twice the
@@ -148,197 +153,12 @@ bool within_reach(const Vec2* v, std::size_t count, std::span<const Vec2> p, std
   return inside;
 }
 
-// n perpendicular to the contact line (p2 - p1 != 0), oriented from i toward j. (The orientation from the
-// unscaled perpendicular, so that it does not wait for the square root and the division; lengths ≥ eps_L ~
-// 1e-11 m: no under/overflow.)
-Vec2 line_normal(const Vec2& p1, const Vec2& p2, const Vec2& dc) {
-  const Vec2 t = p2 - p1;
-  const Vec2 m = perp(t);
-  const double s = m.dot(dc);
-  const bool flip = s < 0.0 || (s == 0.0 && (m.x() < 0.0 || (m.x() == 0.0 && m.y() < 0.0)));
-  return m * ((flip ? -1.0 : 1.0) / std::sqrt(t.squaredNorm()));
-}
-
 // n along the line of centres; +x when the centres coincide.
 Vec2 centre_normal(const Vec2& dc) {
   const double len = std::hypot(dc.x(), dc.y());
   if (len > 0.0 && std::isfinite(len)) return dc / len;
   return Vec2(1.0, 0.0);
 }
-
-// The edges of both polygons as lines in the local frame about o, by label (0..n-1 the edges of P_i, n + b
-// edge b of P_j): first vertex (ax, ay) and direction d = p_{k+1} − p_k, computed when asked for.
-struct PairEdges {
-  std::span<const Vec2> pi, pj;
-  double ox, oy;
-  int n, m;
-  double tol, tol2;  // the margin of a regular overlap, and its square
-  struct Line {
-    double ax, ay, dx, dy;
-  };
-  bool of_j(int l) const { return l >= n; }
-  int next(int l) const { return l < n ? (l + 1 == n ? 0 : l + 1) : (l + 1 == n + m ? n : l + 1); }
-  // The line from a to b (world vertices), in the local frame.
-  Line through(const Vec2& a, const Vec2& b) const {
-    const double ax = a.x() - ox, ay = a.y() - oy;
-    return {ax, ay, (b.x() - ox) - ax, (b.y() - oy) - ay};
-  }
-  Line line(int l) const {
-    const bool j = l >= n;
-    const std::span<const Vec2> p = j ? pj : pi;
-    const auto k = static_cast<std::size_t>(j ? l - n : l);
-    return through(p[k], p[k + 1 == p.size() ? 0 : k + 1]);
-  }
-  // A facing edge of each polygon (P_i's first) whose reach leaves room for the margin: within the reach of
-  // its midpoint, every line of that polygon but the edge's own and its two neighbours' is more than
-  // 1e-3 reach > tol away (edge_reach), so those three lines decide.
-  struct Near {
-    int edge = -1;  // none
-    double mx = 0, my = 0, reach2 = 0;
-  };
-  std::array<Near, 2> near;
-  void set_near(bool j, std::size_t edge, double reach) {
-    const std::span<const Vec2> p = j ? pj : pi;
-    if (edge >= p.size() || !(reach > 1e3 * tol)) return;
-    const Vec2& a = p[edge];
-    const Vec2& b = p[edge + 1 == p.size() ? 0 : edge + 1];
-    near[j] = {static_cast<int>(edge) + (j ? n : 0), 0.5 * ((a.x() - ox) + (b.x() - ox)),
-               0.5 * ((a.y() - oy) + (b.y() - oy)), reach * reach};
-  }
-  // (x, y) more than tol inside the line.
-  static bool inside(double x, double y, const Line& l, double tol2) {
-    const double s = l.dx * (y - l.ay) - l.dy * (x - l.ax);
-    return (s > 0.0) & (s * s > tol2 * (l.dx * l.dx + l.dy * l.dy));
-  }
-  // (x, y) more than tol inside every edge line of P_j (j) or of P_i.
-  bool inside_polygon(double x, double y, bool j) const {
-    const Near& f = near[j];
-    if (f.edge >= 0 && (x - f.mx) * (x - f.mx) + (y - f.my) * (y - f.my) <= f.reach2) {
-      // The lines of edges e−1, e, e+1, through their four vertices.
-      const std::span<const Vec2> p = j ? pj : pi;
-      const std::size_t size = p.size(), e = static_cast<std::size_t>(f.edge - (j ? n : 0));
-      const std::size_t e0 = e == 0 ? size - 1 : e - 1, e2 = e + 1 == size ? 0 : e + 1;
-      const std::size_t e3 = e2 + 1 == size ? 0 : e2 + 1;
-      return inside(x, y, through(p[e0], p[e]), tol2) & inside(x, y, through(p[e], p[e2]), tol2) &
-             inside(x, y, through(p[e2], p[e3]), tol2);
-    }
-    const std::span<const Vec2> p = j ? pj : pi;
-    double ax = p.back().x() - ox, ay = p.back().y() - oy;
-    bool ok = true;
-    for (const Vec2& q : p) {
-      const double bx = q.x() - ox, by = q.y() - oy;
-      const double dx = bx - ax, dy = by - ay;
-      const double s = dx * (y - ay) - dy * (x - ax);
-      ok &= (s > 0.0) & (s * s > tol2 * (dx * dx + dy * dy));
-      ax = bx;
-      ay = by;
-    }
-    return ok;
-  }
-};
-
-// Most vertices of an overlap polygon computed from its lines (beyond: clipping's conventions).
-constexpr std::size_t kMaxRegularVertices = std::tuple_size_v<decltype(OverlapLines::label)>;
-
-// The vertices of the polygon bounded by the lines `label` [0, K) in order (edge k on line label[k], vertex k
-// = line label[k−1] ∩ line label[k]; a corner of one polygon is that vertex itself) into v, when the polygon
-// is regular (convex_overlap): false otherwise. Every turn is to the left, every edge runs along its line and
-// is longer than tol, a crossing lies on both its edges more than tol from their ends, a corner of one
-// polygon more than tol inside every edge line of the other. Such a polygon (convex: checked for five
-// vertices or more, where turns to the left could wind twice) is P_i ∩ P_j: its vertices lie in both, and it
-// is the intersection of the half-planes of its own edges, each of which contains P_i ∩ P_j.
-bool regular_vertices(const PairEdges& edges, const int* label, std::size_t K, Vec2* v) {
-  std::array<PairEdges::Line, kMaxRegularVertices> line;
-  for (std::size_t k = 0; k < K; ++k) line[k] = edges.line(label[k]);
-  int switches = 0;
-  bool ok = true;
-  for (std::size_t k = 0; k < K; ++k) {
-    const std::size_t k0 = k == 0 ? K - 1 : k - 1;
-    const PairEdges::Line& a = line[k0];
-    const PairEdges::Line& b = line[k];
-    if (edges.next(label[k0]) == label[k]) {  // a corner of one polygon
-      v[k] = Vec2(b.ax, b.ay);
-      ok &= edges.inside_polygon(b.ax, b.ay, !edges.of_j(label[k]));
-      continue;
-    }
-    ++switches;
-    // A crossing: a left turn by more than ~1e-12 rad (the intersection is well defined), on both edges:
-    // at s_b/den along b and s_a/den along a, each more than tol from the ends (s_b·|b| > tol·den, and so on;
-    // compared squared, all terms positive).
-    const double den = a.dx * b.dy - a.dy * b.dx;
-    const double a2 = a.dx * a.dx + a.dy * a.dy, b2 = b.dx * b.dx + b.dy * b.dy;
-    if (!(den > 0.0 && den * den > 1e-24 * a2 * b2)) return false;
-    const double rx = a.ax - b.ax, ry = a.ay - b.ay;
-    const double sb = a.dx * ry - a.dy * rx, sa = b.dx * ry - b.dy * rx;
-    const double limit = edges.tol2 * den * den;
-    // Each end decides through the nearer one (x·x·c, rounded, does not decrease with x > 0).
-    const double mb = std::min(sb, den - sb), ma = std::min(sa, den - sa);
-    ok &= (mb > 0.0) & (ma > 0.0) & (mb * mb * b2 > limit) & (ma * ma * a2 > limit);
-    const double t = sb / den;
-    v[k] = Vec2(b.ax + t * b.dx, b.ay + t * b.dy);
-  }
-  if (switches != 2 || !ok) return false;
-  for (std::size_t k = 0; k < K; ++k) {
-    const Vec2 e = v[k + 1 == K ? 0 : k + 1] - v[k];
-    ok &= (e.x() * line[k].dx + e.y() * line[k].dy > 0.0) & (e.squaredNorm() > edges.tol2);
-  }
-  if (K >= 5) {
-    // Every turn is to the left by less than π (the crossings' den > 0; the corners of convex polygons), so the
-    // direction of the edges winds once, and the polygon is convex, when it passes +x once: dy going from below
-    // 0 to 0 or above (exact signs of the lines' directions; a corner bent backwards by round-off at most adds
-    // a pass, which refuses the polygon).
-    int passes = 0;
-    for (std::size_t k = 0; k < K; ++k) passes += (line[k == 0 ? K - 1 : k - 1].dy < 0.0) & (line[k].dy >= 0.0);
-    ok &= passes == 1;
-  }
-  return ok;
-}
-
-// The contact geometry of a regular overlap polygon from its lines and vertices (local frame about o).
-ContactGeometry regular_contact(const PairEdges& edges, const int* label, const Vec2* v, std::size_t K, const Vec2& o,
-                                const Vec2& dc, double eps_area) {
-  ContactGeometry r;
-  double twice = 0.0;
-  for (std::size_t k = 1; k + 1 < K; ++k) twice += cross(v[k] - v[0], v[k + 1] - v[0]);
-  const double area = 0.5 * twice;
-  if (!(area > eps_area)) return r;
-  std::array<Vec2, 2> crossing;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < K; ++k) {
-    if (edges.of_j(label[k == 0 ? K - 1 : k - 1]) != edges.of_j(label[k])) crossing[count++] = v[k];
-  }
-  r.kind = ContactGeometry::Kind::line;
-  r.area = area;
-  r.crossings = r.distinct_crossings = 2;
-  r.p1 = crossing[0] + o;
-  r.p2 = crossing[1] + o;
-  r.point = 0.5 * (crossing[0] + crossing[1]) + o;
-  r.normal = line_normal(crossing[0], crossing[1], dc);
-  return r;
-}
-
-// What both paths of convex_overlap share: the local frame about o = P_i's first vertex (the differences of
-// nearby coordinates are exact, so the result does not depend on the distance from the origin), the pair's
-// edges in it, the tolerances, and where a regular overlap's lines and vertices go.
-struct OverlapFrame {
-  OverlapFrame(const PairEdges& e, const Vec2& origin, const Vec2& centres, double area_tol, double len_tol,
-               OverlapPolygon* polygon)
-      : edges(e), o(origin), dc(centres), eps_area(area_tol), eps_len(len_tol), overlap(polygon) {}
-  PairEdges edges;
-  Vec2 o, dc;
-  double eps_area, eps_len;
-  OverlapPolygon* overlap;
-  std::array<int, kMaxRegularVertices> label;  // (filled before use)
-  std::array<Vec2, kMaxRegularVertices> v;
-  // The result of the regular overlap in label/v [0, K).
-  ContactGeometry regular_result(std::size_t K) {
-    if (overlap) {
-      overlap->size = K;
-      for (std::size_t k = 0; k < K; ++k) overlap->vertex[k] = v[k] + o;
-    }
-    return regular_contact(edges, label.data(), v.data(), K, o, dc, eps_area);
-  }
-};
 
 // The overlap by clipping (convex_overlap's method), then from its lines when it is regular (the lines go to
 // `cache`). Kept out of line: its buffers make a large stack frame that the cached path does not need.
@@ -585,50 +405,6 @@ double edge_reach(std::span<const Vec2> p, std::size_t edge) {
 ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
                                const Vec2& cj, double length_scale, OverlapPolygon& overlap) {
   return overlap_impl(pi, pj, ci, cj, length_scale, 0, nullptr, &overlap);
-}
-
-std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d) {
-  // The facing edge is one of the two edges at p's support vertex in direction d.
-  const std::size_t n = p.size();
-  std::size_t s = 0;
-  double best = p[0].dot(d);
-  for (std::size_t a = 1; a < n; ++a) {
-    const double h = p[a].dot(d);
-    if (h > best) {
-      best = h;
-      s = a;
-    }
-  }
-  const std::size_t prev = s == 0 ? n - 1 : s - 1;
-  const Vec2 e_out = p[s + 1 == n ? 0 : s + 1] - p[s];  // edge s -> s+1
-  const Vec2 e_in = p[s] - p[prev];                      // edge s-1 -> s
-  const double l_out = e_out.norm(), l_in = e_in.norm();
-  // Outward normal of edge e (counter-clockwise polygon): (e_y, −e_x)/|e|.
-  const double f_out = l_out > 0 ? (e_out.y() * d.x() - e_out.x() * d.y()) / l_out : -1e300;
-  const double f_in = l_in > 0 ? (e_in.y() * d.x() - e_in.x() * d.y()) / l_in : -1e300;
-  return f_out >= f_in ? s : prev;
-}
-
-bool edge_separates(std::span<const Vec2> p, std::size_t edge, std::span<const Vec2> q, double slack) {
-  const detail::SeparatingEdge line(p, edge, slack);
-  if (!line.valid) return false;
-  // Branch-free: a separated pair, the usual case, has every vertex to test anyway.
-  double deepest = 0.0;
-  for (const Vec2& v : q) deepest = std::min(deepest, line.clearance(v));
-  return line.separates(deepest);
-}
-
-bool detail::separates_from_all(const SeparatingEdge& line, std::span<const Vec2> q, std::uint8_t& deepest_vertex) {
-  double deepest = 0.0, lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const double d = line.clearance(q[k]);
-    deepest = std::min(deepest, d);
-    if (d < lowest) {
-      lowest = d;
-      deepest_vertex = static_cast<std::uint8_t>(k);
-    }
-  }
-  return line.separates(deepest);
 }
 
 }  // namespace frac::geometry

@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "geometry/overlap.hpp"
+#include "geometry/separation.hpp"
 #include "geometry/polygon.hpp"
 #include "mesh/random_lattice.hpp"
 

@@ -131,61 +131,6 @@ TEST(Parallel, PartLayoutKeepsTheThreadsPartsApart) {
   }
 }
 
-// Every item runs once, whatever the thread count, the chunk and the cost of the items (a thread that finishes
-// its own takes the others', from the back); each thread runs a prefix of its part, in order, up to split(t),
-// and marks those chunks its own; with one thread, every item in order.
-TEST(Parallel, HomeFirstScheduleRunsEveryItemOnce) {
-  frac::HomeFirstSchedule schedule;
-  for (const int threads : {1, 2, 3}) {
-    schedule.reserve(static_cast<std::size_t>(threads));
-    for (const std::size_t items : {0u, 1u, 63u, 64u, 1000u, 4099u}) {
-      for (const std::size_t chunk : {1u, 7u, 64u}) {
-        std::vector<int> runs(items, 0), runner(items, -1), own(items, -1);
-        std::vector<std::vector<std::size_t>> order(static_cast<std::size_t>(threads));
-#pragma omp parallel num_threads(threads)
-        {
-          schedule.start_mine(items);
-#pragma omp barrier
-          schedule.run(chunk, [&](std::size_t first, std::size_t last, bool mine) {
-            for (std::size_t k = first; k < last; ++k) {
-              // Uneven costs: the first items are heavy, so the other threads run out of their own early.
-              volatile double sink = 0;
-              for (std::size_t w = 0; w < (k < items / 4 ? 2000u : 10u); ++w) sink = sink + 1.0;
-#pragma omp atomic
-              ++runs[k];
-              runner[k] = frac::thread_index();
-              own[k] = mine ? 1 : 0;
-              if (mine) order[static_cast<std::size_t>(frac::thread_index())].push_back(k);
-            }
-          });
-        }
-        for (std::size_t k = 0; k < items; ++k)
-          ASSERT_EQ(runs[k], 1) << items << " items, chunk " << chunk << ", " << threads << " threads, item " << k;
-        for (std::size_t t = 0; t < static_cast<std::size_t>(threads); ++t) {
-          const frac::Range r = frac::static_range(items, t, static_cast<std::size_t>(threads));
-          ASSERT_EQ(schedule.first(t), r.first);
-          ASSERT_EQ(schedule.end(t), r.last);
-          const std::size_t split = schedule.split(t);
-          ASSERT_TRUE(split >= r.first && split <= r.last);
-          ASSERT_EQ(order[t].size(), split - r.first) << "thread " << t;
-          for (std::size_t k = r.first; k < r.last; ++k) {
-            EXPECT_EQ(own[k], k < split ? 1 : 0) << "item " << k;
-            if (k < split) {
-              EXPECT_EQ(runner[k], static_cast<int>(t));
-              EXPECT_EQ(order[t][k - r.first], k) << "thread " << t << " ran its own out of order";
-            } else {
-              EXPECT_NE(runner[k], static_cast<int>(t));
-            }
-          }
-        }
-        if (threads == 1) {
-          ASSERT_EQ(schedule.split(0), items);
-        }
-      }
-    }
-  }
-}
-
 // A single NaN or infinity anywhere, in any block, on any thread count, is found.
 TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
   const int before = frac::max_threads();
