@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Two builds of dem-run compared on the paper-scale explosion and impact (not part of `make bench`: it
-# needs two binaries). Usage: bench/compare-dem-run.sh OLD_DEM_RUN NEW_DEM_RUN   (REPEATS=9, THREADS="1 2")
+# needs two binaries). Usage: bench/compare-dem-run.sh OLD_DEM_RUN NEW_DEM_RUN   (REPEATS=9, THREADS="1 2",
+# SCENES=data/scenes)
 # On a shared machine the load changes from minute to minute, so the two binaries run alternately, round
 # by round (the order swapped every round), and the figure to quote is the median of the per-round
 # ratios new/old, with the fastest run of each (the least disturbed). Also says whether the outputs are the
@@ -15,7 +16,7 @@ mkdir -p "$out"
 # shellcheck source=bench/lib.sh
 source "$(dirname "$0")/lib.sh"  # time_once, median_of, same_bits
 require_gnu_time
-scenes=data/scenes
+scenes=${SCENES:-data/scenes}  # (SCENES: another folder of scenes, e.g. one an older build knows)
 mesh_gen=$(dirname "$new")/mesh-gen
 [[ -x $mesh_gen ]] || mesh_gen=build/tools/mesh-gen
 "$mesh_gen" voronoi --shape disc --diameter 0.4 --cells 1100 --seed 7 -q -o "$out/ab-disc.h5"
