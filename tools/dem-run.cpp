@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
 
     Progress progress("dem-run", args.common.quiet);
     const dem::RunSummary s =
-        dem::run_to_file(sim, scene, cli::scene_run("dem-run", args, scene), in, args.common.output, progress);
+        dem::run_to_file(sim, scene, cli::scene_run("dem-run", args, scene), in, args.common.output,
+                         args.checkpoint, progress);
     progress.finish(dem::summary_line(s, sim));
     return kExitOk;
   });

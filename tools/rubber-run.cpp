@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
     Progress progress("rubber-run", args.common.quiet);
     const rubber::RubberSummary s = rubber::run_to_file(system, setup, mesh, scene,
                                                         cli::scene_run("rubber-run", args, scene), in,
-                                                        args.common.output, progress);
+                                                        args.common.output, args.checkpoint, progress);
     progress.finish(rubber::summary_line(s, system, setup, mesh));
     if (const auto warning = rubber::energy_warning(s, resolved); warning && !args.common.quiet)
       std::cerr << "rubber-run: warning: " << *warning << "\n";

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/signals.hpp"
 #include "core/version.hpp"
 
 namespace frac::cli {
@@ -203,6 +204,11 @@ int run_tool(const std::string& tool, const std::function<int()>& body) {
     const bool written = std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good();
     if (!written) throw RuntimeError(std::string("-: cannot write to standard output (") + std::strerror(errno) + ")");
     return code;
+  } catch (const Interrupted& e) {
+    std::fflush(stdout);
+    std::cout.flush();
+    std::cerr << tool << ": " << e.what() << "\n";
+    die_by_signal(e.signal);
   } catch (const UsageError& e) {
     return fail(e.what(), kExitBadInput);
   } catch (const InputError& e) {

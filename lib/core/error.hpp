@@ -21,6 +21,13 @@ struct RuntimeError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A run stopped by a stop signal (core/signals: SIGTERM at a batch job's time limit, SIGINT) after it wrote
+// what it could (its checkpoint): the tool reports it and ends by that signal.
+struct Interrupted : std::runtime_error {
+  Interrupted(int sig, const std::string& what) : std::runtime_error(what), signal(sig) {}
+  int signal;
+};
+
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRuntime = 1;
 inline constexpr int kExitBadInput = 2;

@@ -32,6 +32,13 @@ void Progress::tick(const std::function<std::string()>& line) {
   }
 }
 
+void Progress::note(const std::string& message) {
+  if (quiet_) return;
+  if (live_) std::cerr << "\r\033[K";
+  live_ = false;
+  std::cerr << tool_ << ": " << message << "\n" << std::flush;
+}
+
 void Progress::finish(const std::string& last) {
   if (quiet_) return;
   if (live_) std::cerr << "\r\033[K";

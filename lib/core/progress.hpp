@@ -14,6 +14,8 @@ class Progress {
   ~Progress();
   // Cheap to call every step: looks at the clock every 64 calls, then asks `line` for the text.
   void tick(const std::function<std::string()>& line);
+  // A line of its own, "tool: message" (if not quiet).
+  void note(const std::string& message);
   // Ends a live line (and prints `last` if not quiet).
   void finish(const std::string& last);
   double elapsed() const;  // s since construction

@@ -16,6 +16,13 @@ struct ProvenanceEntry {
   std::string seed;          // seed used, "" when the tool uses no randomness
 };
 
+// One part of a run continued from checkpoints: when and how it started, and from which step.
+struct RunSegment {
+  std::string started;       // UTC, ISO 8601
+  std::string command_line;
+  long long first_step = 0;
+};
+
 // Everything a tool records about one run of itself.
 struct ToolRun {
   std::string tool;
@@ -25,6 +32,7 @@ struct ToolRun {
   std::vector<std::pair<std::string, std::string>> parameters;  // resolved options
   std::vector<std::string> input_uuids;                      // uuids of the files read
   std::vector<ProvenanceEntry> input_history;                // their histories, concatenated
+  std::vector<RunSegment> segments;  // a run resumed from checkpoints: its parts, the first from step 0; else empty
 };
 
 ToolRun start_run(const std::string& tool, const std::string& command_line);

@@ -9,10 +9,19 @@ SceneToolArgs parse_scene_tool(int argc, const char* const* argv, const ToolSpec
   desc.add_options()("input", po::value(&a.input)->required(), "mesh file, or - for standard input")(
       "scene", po::value(&a.scene_path)->required(), "scene file (INI)");
   add_common(desc, a.common, kOutput | kQuiet | kSeed | kThreads | kConfig);
+  std::string every = "15min";
+  desc.add_options()("checkpoint-every", po::value(&every)->default_value(every),
+                     "write a checkpoint every N steps, or every wall-clock time (600s, 15min, 2h); 0: only when "
+                     "stopped by SIGTERM or SIGINT (a run always writes one then)")(
+      "checkpoint", po::value(&a.checkpoint.path)->value_name("FILE"),
+      "the checkpoint file (default: the output's name + .ckpt; none for -o -)")(
+      "resume", po::value(&a.checkpoint.resume)->value_name("FILE"),
+      "continue the run of this checkpoint (the same command line finds the default checkpoint by itself)");
   po::positional_options_description positional;
   positional.add("input", 1);
   parse(static_cast<int>(args.size()), args.data(), spec, desc, positional, &a.overrides);
   a.command_line = command_line(argc, argv);
+  parse_checkpoint_every(every, "--checkpoint-every", a.checkpoint);
   return a;
 }
 

@@ -1,11 +1,13 @@
 #pragma once
 // The command line of a tool that runs a scene on a mesh (dem-run, rubber-run): MESH|- --scene SCENE.ini, any
 // scene key as --section.key VALUE (or in a --config file, which the command line overrides), -o, -q, --seed,
-// --threads; and the provenance record of such a run.
+// --threads, the checkpoint options (--checkpoint-every, --checkpoint, --resume); and the provenance record of
+// such a run.
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/checkpoint_options.hpp"
 #include "core/cli.hpp"
 #include "core/provenance.hpp"
 #include "core/scene.hpp"
@@ -15,6 +17,7 @@ namespace frac::cli {
 struct SceneToolArgs {
   std::string input, scene_path;
   CommonOptions common;
+  CheckpointOptions checkpoint;
   std::vector<std::pair<std::string, std::string>> overrides;  // scene keys of the command line and --config
   std::string command_line;
 };

@@ -12,13 +12,20 @@ void Beams::BeamTable::resize(std::size_t n) {
   for (auto* v : {&e0x, &e0y, &l0, &alpha, &beta, &delta}) v->resize(n);
 }
 
-void Beams::BeamTable::copy_entry(std::size_t to, std::size_t from) {
-  for (auto* v : {&beam, &i, &j}) (*v)[to] = (*v)[from];
-  for (auto* v : {&e0x, &e0y, &l0, &alpha, &beta, &delta}) (*v)[to] = (*v)[from];
+void Beams::BeamTable::copy_entry(std::size_t to, const BeamTable& source, std::size_t from) {
+  beam[to] = source.beam[from];
+  i[to] = source.i[from];
+  j[to] = source.j[from];
+  e0x[to] = source.e0x[from];
+  e0y[to] = source.e0y[from];
+  l0[to] = source.l0[from];
+  alpha[to] = source.alpha[from];
+  beta[to] = source.beta[from];
+  delta[to] = source.delta[from];
 }
 
 void Beams::BeamTable::erase(std::size_t k) {
-  for (std::size_t e = k; e + 1 < size(); ++e) copy_entry(e, e + 1);
+  for (std::size_t e = k; e + 1 < size(); ++e) copy_entry(e, *this, e + 1);
   resize(size() - 1);
 }
 
@@ -340,7 +347,7 @@ void Beams::compact_active() {
   std::size_t kept = 0;
   for (std::size_t k = 0; k < active_.size(); ++k) {
     if (intact_[static_cast<std::size_t>(active_.beam[k])] == 0) continue;
-    if (kept != k) active_.copy_entry(kept, k);
+    if (kept != k) active_.copy_entry(kept, active_, k);
     ++kept;
   }
   active_.resize(kept);
@@ -360,6 +367,30 @@ void Beams::remove_all() {
   active_.resize(0);
   broken_in_active_ = 0;
   index_cells();
+}
+
+void Beams::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "beams");
+  archive.array("intact", intact_, all_.size());
+  // The active list as it stands, broken beams not yet compacted out included: its blocks order the sums.
+  std::vector<std::int32_t> active(active_.beam);
+  archive.array("active", active);
+  if (!archive.loading()) return;
+  archive.require_below("active", active, all_.size());
+  std::size_t in_active = 0;
+  for (std::size_t k = 0; k < active.size(); ++k) {
+    if (k > 0 && active[k] <= active[k - 1]) archive.refuse("active", "not in beam order");
+    if (intact_[static_cast<std::size_t>(active[k])] > 1) archive.refuse("intact", "holds a value other than 0 or 1");
+    in_active += intact_[static_cast<std::size_t>(active[k])];
+  }
+  if (in_active != static_cast<std::size_t>(std::count(intact_.begin(), intact_.end(), std::uint8_t{1})))
+    archive.refuse("active", "leaves out an intact beam");
+  active_.resize(active.size());
+  for (std::size_t k = 0; k < active.size(); ++k) active_.copy_entry(k, all_, static_cast<std::size_t>(active[k]));
+  broken_in_active_ = active.size() - in_active;
+  index_cells();
+  for (const std::int32_t b : active)
+    if (!intact_[static_cast<std::size_t>(b)]) unindex(static_cast<std::size_t>(b));
 }
 
 }  // namespace frac::dem

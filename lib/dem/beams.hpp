@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/state_archive.hpp"
 #include "dem/beam.hpp"
 #include "dem/bodies.hpp"
 #include "mesh/cell_mesh.hpp"
@@ -56,6 +57,8 @@ class Beams {
   void remove(std::size_t b);
   // Marks every beam broken (a scene without beams: no cohesion, every cell its own fragment).
   void remove_all();
+  // The state a continuation needs (core/state_archive): which beams are intact, and the active list.
+  void visit_state(StateArchive& archive);
   // Broken beams leave the active list in batches, not at every step a beam breaks (a serial pass over the
   // list, whose entries the other threads hold in their caches): until then they stay in it, marked broken
   // (intact()), their responses zero and uncomputed; the list is compacted once more than one entry in
@@ -73,7 +76,7 @@ class Beams {
     std::vector<double> e0x, e0y, l0, alpha, beta, delta;
     std::size_t size() const { return beam.size(); }
     void resize(std::size_t n);
-    void copy_entry(std::size_t to, std::size_t from);  // entry `to` := entry `from`
+    void copy_entry(std::size_t to, const BeamTable& source, std::size_t from);  // entry `to` := source's `from`
     void erase(std::size_t k);                          // the entries after k move up by one
   };
   // use(k, b, r) with beam_response's values r of beam b = t.beam[k], for k in [first, last), in order, where r

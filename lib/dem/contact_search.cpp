@@ -128,6 +128,25 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   candidates_.reserve(threads);
 }
 
+void ContactSearch::visit_state(StateArchive& archive) {
+  list_.visit_state(archive);
+  if (!archive.loading()) return;
+  StateArchive::Scope scope(archive, "neighbour_list");
+  const auto vertices = [&](std::int32_t k) {
+    const auto c = static_cast<std::size_t>(k);
+    return static_cast<std::size_t>(mesh_->vertex_offset[c + 1] - mesh_->vertex_offset[c]);
+  };
+  const auto pairs = list_.pairs();
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const NeighbourPair& pair = pairs[p];
+    const std::size_t ni = vertices(pair.i), nj = vertices(pair.j);
+    bool ok = static_cast<std::size_t>(pair.edge_i) < ni && static_cast<std::size_t>(pair.edge_j) < nj &&
+              pair.deepest_i < nj && pair.deepest_j < ni;
+    for (std::size_t l = 0; l < pair.lines.size; ++l) ok &= pair.lines.label[l] < ni + nj;
+    if (!ok) archive.refuse("edge_i", "pair " + std::to_string(p) + " names an edge or vertex its cells do not have");
+  }
+}
+
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
   reserve_threads(static_cast<std::size_t>(max_threads()), out);
   as_team(bodies_->n > kMinParallelItems, [&] {

@@ -41,6 +41,8 @@ class ContactSearch {
   void find_end(ContactList& out);
   // How often the neighbour list was rebuilt.
   std::int64_t rebuilds() const { return list_.rebuilds(); }
+  // The neighbour list's state (core/state_archive); loading checks every edge and vertex index against the mesh.
+  void visit_state(StateArchive& archive);
 
  private:
   void world_vertices(std::span<const double> q);  // this thread's cells

@@ -44,6 +44,13 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
   }
 }
 
+void Model::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "model");
+  archive.value("evaluations", evaluations_);
+  beams_.visit_state(archive);
+  if (physics_.contacts) search_.visit_state(archive);
+}
+
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
   const std::size_t n = size();
   double* force = force_.data();

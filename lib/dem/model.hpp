@@ -83,6 +83,9 @@ class Model final : public dynamics::System {
   // Kinetic energies at (q, v): translational, rotational, J.
   std::array<double, 2> kinetic_energy(std::span<const double> v) const;
 
+  // The state a continuation needs (core/state_archive), under "model/": the beams and the neighbour list.
+  void visit_state(StateArchive& archive);
+
  private:
   // After an evaluation whose forces are not all finite: the first term, and the coordinate, where they
   // became non-finite (non_finite_term_, non_finite_index_).

@@ -170,4 +170,44 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
   team_barrier();
 }
 
+void NeighbourList::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "neighbour_list");
+  const std::size_t n = bodies_->n;
+  archive.value("rebuilds", rebuilds_);
+  archive.array("reference_q", ref_);
+  std::size_t pairs = pairs_.size();
+  archive.value("pairs", pairs);
+  if (archive.loading()) {
+    if (ref_.size() != 3 * n && !ref_.empty()) archive.refuse("reference_q", "not one position per coordinate");
+    if (pairs > n * (n - 1) / 2) archive.refuse("pairs", "more pairs than the cells make");
+    pairs_.assign(pairs, NeighbourPair{});
+    previous_.clear();
+  }
+  archive.field("i", pairs_, &NeighbourPair::i);
+  archive.field("j", pairs_, &NeighbourPair::j);
+  archive.field("edge_i", pairs_, &NeighbourPair::edge_i);
+  archive.field("edge_j", pairs_, &NeighbourPair::edge_j);
+  archive.field("overlapping", pairs_, &NeighbourPair::overlapping);
+  archive.field("deepest_i", pairs_, &NeighbourPair::deepest_i);
+  archive.field("deepest_j", pairs_, &NeighbourPair::deepest_j);
+  // The cached overlap lines: their count and labels, 1 + 8 bytes a pair.
+  constexpr std::size_t kLabels = std::tuple_size_v<decltype(geometry::OverlapLines::label)>;
+  std::vector<std::uint8_t> lines(pairs * (1 + kLabels));
+  if (!archive.loading())
+    for (std::size_t p = 0; p < pairs; ++p) {
+      lines[p * (1 + kLabels)] = pairs_[p].lines.size;
+      std::copy(pairs_[p].lines.label.begin(), pairs_[p].lines.label.end(), lines.begin() + static_cast<std::ptrdiff_t>(p * (1 + kLabels) + 1));
+    }
+  archive.array("lines", lines, pairs * (1 + kLabels));
+  if (!archive.loading()) return;
+  for (std::size_t p = 0; p < pairs; ++p) {
+    NeighbourPair& pair = pairs_[p];
+    if (pair.i < 0 || pair.j <= pair.i || static_cast<std::size_t>(pair.j) >= n)
+      archive.refuse("i", "pair " + std::to_string(p) + " is not two cells i < j of the mesh");
+    pair.lines.size = lines[p * (1 + kLabels)];
+    if (pair.lines.size > kLabels) archive.refuse("lines", "pair " + std::to_string(p) + ": more lines than a cache holds");
+    std::copy_n(lines.begin() + static_cast<std::ptrdiff_t>(p * (1 + kLabels) + 1), kLabels, pair.lines.label.begin());
+  }
+}
+
 }  // namespace frac::dem

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/state_archive.hpp"
 #include "dem/bodies.hpp"
 #include "geometry/overlap.hpp"
 #include "geometry/vec2.hpp"
@@ -51,6 +52,10 @@ class NeighbourList {
   std::size_t size() const { return pairs_.size(); }
   // How often the list was built.
   std::int64_t rebuilds() const { return rebuilds_; }
+  // The state a continuation needs (core/state_archive): the positions at the last build and the pairs with what
+  // the pair tests learnt about them (which changes the bits of later steps). Loading checks the cells' indices;
+  // the caller checks the edges and vertices (dem/contact_search).
+  void visit_state(StateArchive& archive);
 
  private:
   void build_grid(std::span<const double> q);  // the first thread's part of a rebuild

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/signals.hpp"
 #include "dynamics/runaway.hpp"
 
 namespace frac::dem {
@@ -38,7 +40,7 @@ std::string blame_non_finite(const Model& model, const dynamics::Integrator& in,
 
 RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
                    std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
-                   Progress& progress, double start_tau) {
+                   Progress& progress, double start_tau, const io::Continuation& continuation) {
   RunSummary summary;
   summary.dt = dt;
   const std::size_t n = model.bodies().n;
@@ -128,13 +130,46 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     }
   };
 
-  observe(0);
-  write_frame(0);
   double next_frame = scene.output.frame_interval;
   std::int64_t last_break_step = -1;
   const StopRule& stop = scene.stop;
   const bool breaking = model.physics().breaking;
   std::int64_t step = 0;
+  // Everything the loop carries from step to step: what a checkpoint saves and a continuation loads.
+  const auto visit_state = [&](StateArchive& a) {
+    integrator.visit_state(a);
+    model.visit_state(a);
+    StateArchive::Scope scope(a, "run");
+    a.value("step", step);
+    a.value("next_frame", next_frame);
+    a.value("last_break_step", last_break_step);
+    a.array("law_work", ledger.law_work, laws.size());
+    a.value("boundary_work", ledger.boundary);
+    a.value("broken_energy", ledger.broken_energy);
+    a.array("previous_law_power", previous_power, laws.size());
+    a.value("previous_boundary_power", previous_boundary_power);
+    a.value("initial_balance", e0);
+    a.value("energy_error", summary.energy_error);
+    a.value("energy_scale", summary.energy_scale);
+    a.value("start_evaluations", summary.start_evaluations);
+    std::size_t broken_count = broken.size();
+    a.value("broken", broken_count);
+    if (a.loading()) {
+      if (broken_count > nb) a.refuse("broken", "more broken beams than the mesh has");
+      broken.assign(broken_count, BeamBreak{});
+    }
+    a.field("broken_beam", broken, &BeamBreak::beam);
+    a.field("broken_mode", broken, &BeamBreak::mode);
+    a.field("broken_energy_each", broken, &BeamBreak::energy);
+  };
+  if (continuation.resume) {
+    visit_state(*continuation.resume);
+  } else {
+    observe(0);
+    write_frame(0);
+  }
+  std::optional<DeferSignals> defer;
+  if (continuation.checkpoints) defer.emplace();
   for (;;) {
     integrator.step(model);
     ++step;
@@ -188,6 +223,10 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     if (!reason.empty()) {
       summary.stop_reason = reason;
       break;
+    }
+    if (io::Checkpoints* ck = continuation.checkpoints) {
+      if (ck->due(step)) ck->write(step, t, visit_state);
+      ck->stop_if_signalled(step, t, visit_state);
     }
   }
   if (writer) writer->finish();

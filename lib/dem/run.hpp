@@ -10,6 +10,7 @@
 #include "dem/loading.hpp"
 #include "dem/model.hpp"
 #include "dem/scene.hpp"
+#include "io/checkpoint.hpp"
 #include "io/run_io.hpp"
 
 namespace frac::dem {
@@ -32,12 +33,14 @@ struct Ledger {
   double broken_energy = 0;      // elastic energy removed with broken beams, J
 };
 
+
 // Runs `model` from (q0, v0); writes frames and observables through `writer` (frames every
 // plan.frame_interval and the final state; observables every plan.observe_every steps). The integrator
 // starts as scene.integrator.start says; `start_tau` is the time scale of an exact start
-// (dynamics::taylor_derivatives: about 0.1/ω_max).
+// (dynamics::taylor_derivatives: about 0.1/ω_max). With checkpoints, one is written when due and when a stop
+// signal arrives (then Interrupted is thrown).
 RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
                    std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
-                   Progress& progress, double start_tau);
+                   Progress& progress, double start_tau, const io::Continuation& continuation = {});
 
 }  // namespace frac::dem

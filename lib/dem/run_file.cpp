@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
@@ -44,20 +45,22 @@ mesh::CellMesh read_run_mesh(const io::Group& in, const std::string& name) {
 }
 
 RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const io::Group& input,
-                       const std::string& output, Progress& progress) {
+                       const std::string& output, const CheckpointOptions& checkpoint, Progress& progress) {
   add_derived(run, sim);
   io::add_input(run, input);
+  io::RunCheckpoints checkpoints(checkpoint, output, run, [&](const std::string& m) { progress.note(m); });
   io::OutputFile out(output);
   io::write_header(out.root(), "run", run, out.uuid());
   out.root().group("parameters/dem-run").write_strings("scene_text", {scene.source_text()});
   io::RunWriter writer(out.root(), *sim.cell_mesh, sim.model.bodies().mass, sim.model.bodies().inertia);
-  const RunSummary s = sim.run(&writer, progress);
+  const RunSummary s = sim.run(&writer, progress, checkpoints.start(writer));
   out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
   out.root().set_attr("end_time", s.time);
   out.root().set_attr("stop_reason", s.stop_reason);
   out.root().set_attr("wall_seconds", s.wall_seconds, "provenance");  // differs run to run: not data
   out.root().set_attr("start_evaluations", static_cast<std::int64_t>(s.start_evaluations));
   out.commit();
+  checkpoints.finish();
   return s;
 }
 

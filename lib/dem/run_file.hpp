@@ -4,6 +4,7 @@
 // observables, break events, the run's summary attributes), atomically.
 #include <string>
 
+#include "core/checkpoint_options.hpp"
 #include "core/progress.hpp"
 #include "core/provenance.hpp"
 #include "core/scene.hpp"
@@ -18,8 +19,9 @@ mesh::CellMesh read_run_mesh(const io::Group& in, const std::string& name);
 
 // Runs `sim` and writes the run file `output` ("-": standard output). `run`: the provenance record so far
 // (cli::scene_run); the derived parameters (time step, kick) and the input's provenance are added here.
+// Checkpoints as `checkpoint` says (io/checkpoint); a run whose checkpoint exists continues from it.
 RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const io::Group& input,
-                       const std::string& output, Progress& progress);
+                       const std::string& output, const CheckpointOptions& checkpoint, Progress& progress);
 
 // The one line a run reports: steps, time, stop reason, beams broken, energy balance, wall time.
 std::string summary_line(const RunSummary& s, const Simulation& sim);

@@ -23,8 +23,8 @@ struct Simulation {
   TimeStep time_step;
   std::unique_ptr<dynamics::Integrator> integrator;
   std::vector<double> q0, v0;
-  RunSummary run(io::RunWriter* writer, Progress& progress) {
-    return run_dem(model, *integrator, scene, setup, q0, v0, time_step.dt, writer, progress, start_tau());
+  RunSummary run(io::RunWriter* writer, Progress& progress, const io::Continuation& continuation = {}) {
+    return run_dem(model, *integrator, scene, setup, q0, v0, time_step.dt, writer, progress, start_tau(), continuation);
   }
   // Time scale of an exact start: 0.1 of the fastest motion (ω_max, or the damping rate γ_max).
   double start_tau() const {

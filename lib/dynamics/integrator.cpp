@@ -187,6 +187,11 @@ int start(Integrator& integrator, System& system, double t0, double dt, std::spa
   return ts.evaluations;
 }
 
+void Integrator::visit_clock(StateArchive& archive) {
+  archive.value("t", t_);
+  archive.value("steps", steps_);
+}
+
 // ---------------------------------------------------------------- Gear5
 namespace {
 constexpr double kGearC[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
@@ -224,6 +229,23 @@ void Gear5::start_exact(System& system, double t0, double dt, const std::vector<
 void Gear5::set_velocity(std::size_t i, double value) {
   v_[i] = value;
   r(1, i) = dt_ * value;
+}
+
+void Gear5::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "integrator");
+  visit_clock(archive);
+  archive.array("q", r_[0], n_);
+  archive.array("v", v_, n_);
+  archive.array("a", a_, n_);
+  // r1..r5 in the system's order (the layout of the threads' parts depends on the thread count).
+  std::vector<double> rk(n_);
+  for (int k = 1; k < 6; ++k) {
+    if (!archive.loading())
+      for (std::size_t i = 0; i < n_; ++i) rk[i] = r(k, i);
+    archive.array("r" + std::to_string(k), rk, n_);
+    if (archive.loading())
+      for (std::size_t i = 0; i < n_; ++i) r(k, i) = rk[i];
+  }
 }
 
 void Gear5::apply_prescribed(const System& system, double t) {
@@ -315,6 +337,14 @@ void Gear5::step(System& system) {
 }
 
 // ---------------------------------------------------------------- velocity Verlet
+void VelocityVerlet::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "integrator");
+  visit_clock(archive);
+  archive.array("q", q_, n_);
+  archive.array("v", v_, n_);
+  archive.array("a", a_, n_);
+}
+
 void VelocityVerlet::start(System& system, double t0, double dt, std::span<const double> q0,
                            std::span<const double> v0) {
   n_ = q0.size();

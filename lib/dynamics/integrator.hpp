@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/state_archive.hpp"
 
 namespace frac::dynamics {
 
@@ -84,8 +85,13 @@ class Integrator {
   // Whether the last step left every integrated coordinate and velocity finite (checked in the step's last
   // pass over them, at no extra pass; prescribed coordinates follow the scene's motion).
   bool finite() const { return finite_; }
+  // The state a continuation needs (core/state_archive), under "integrator/": time, step count, positions,
+  // velocities, accelerations and gear5's higher derivatives. Loading needs a started integrator of the same
+  // size.
+  virtual void visit_state(StateArchive& archive) = 0;
 
  protected:
+  void visit_clock(StateArchive& archive);
   bool finite_ = true;
   double t_ = 0, dt_ = 0;
   std::size_t n_ = 0;
@@ -145,6 +151,7 @@ class Gear5 final : public Integrator {
   std::span<const double> v() const override { return v_; }
   std::span<const double> a() const override { return a_; }
   void set_velocity(std::size_t i, double value) override;
+  void visit_state(StateArchive& archive) override;
 
  private:
   void apply_prescribed(const System& system, double t);
@@ -167,6 +174,7 @@ class VelocityVerlet final : public Integrator {
   std::span<const double> v() const override { return v_; }
   std::span<const double> a() const override { return a_; }
   void set_velocity(std::size_t i, double value) override { v_[i] = value; }
+  void visit_state(StateArchive& archive) override;
 
  private:
   std::vector<double> q_, v_, a_, v_est_;

@@ -7,15 +7,14 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <mutex>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/signals.hpp"
 
 namespace frac::io {
 namespace {
@@ -26,18 +25,14 @@ constexpr int kMaxTemps = 16;
 char g_temps[kMaxTemps][4096];
 volatile std::sig_atomic_t g_used[kMaxTemps];
 
-extern "C" void remove_temps_and_reraise(int sig) {
+// Async-signal-safe: called from the stop-signal handler (core/signals).
+void remove_temps() {
   for (int k = 0; k < kMaxTemps; ++k)
     if (g_used[k]) unlink(g_temps[k]);
-  std::signal(sig, SIG_DFL);
-  std::raise(sig);
 }
 
 void register_temp(const std::string& path) {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_temps_and_reraise);
-  });
+  on_stop_signal(remove_temps);
   for (int k = 0; k < kMaxTemps; ++k) {
     if (!g_used[k] && path.size() < sizeof g_temps[k]) {
       std::memcpy(g_temps[k], path.c_str(), path.size() + 1);
@@ -112,8 +107,10 @@ AtomicFile::~AtomicFile() {
   unregister_temp(temp_);
 }
 
-void AtomicFile::commit() {
+void AtomicFile::commit(bool durable) {
   if (committed_) return;
+  if (durable && fsync(fd_) != 0)
+    throw RuntimeError(target_ + ": cannot write the file to the disk (" + write_failure(target_, errno) + ")");
   std::error_code ec;
   // mkstemp makes the file 0600; give it the permissions a new file normally gets.
   const mode_t mask = umask(0);

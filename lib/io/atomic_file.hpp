@@ -21,7 +21,7 @@ class AtomicFile {
 
   const std::string& path() const { return temp_; }  // write here
   const std::string& target() const { return target_; }
-  void commit();  // rename onto the target
+  void commit(bool durable = false);  // rename onto the target; `durable`: synced to the disk first
 
  private:
   std::string target_, temp_;

@@ -55,6 +55,35 @@ void write_header(Group& root, std::string_view kind, const ToolRun& run, const 
   prov.write_strings("file_uuid", uuid);
   prov.write_strings("seed", seed);
   prov.write_strings("inputs", run.input_uuids);
+  if (run.segments.empty()) return;
+  Group seg = prov.create_group("segments");
+  std::vector<std::string> started, command_line;
+  std::vector<std::int64_t> first_step;
+  for (const RunSegment& s : run.segments) {
+    started.push_back(s.started);
+    command_line.push_back(s.command_line);
+    first_step.push_back(s.first_step);
+  }
+  seg.write_strings("started", started);
+  seg.write_strings("command_line", command_line);
+  seg.write("first_step", std::span<const std::int64_t>(first_step), {first_step.size()});
+}
+
+std::vector<RunSegment> read_segments(const Group& root) {
+  std::vector<RunSegment> out;
+  if (!root.has("provenance/segments")) {
+    const FileProvenance prov = read_provenance(root);
+    if (!prov.history.empty()) out.push_back({prov.history.front().time, prov.history.front().command_line, 0});
+    return out;
+  }
+  const Group seg = root.group("provenance/segments");
+  const auto started = seg.read_strings("started");
+  const auto command_line = seg.read_strings("command_line");
+  const auto first_step = seg.read<std::int64_t>("first_step", nullptr, 1);
+  if (command_line.size() != started.size() || first_step.size() != started.size())
+    throw InputError(seg.where() + ": its datasets differ in length");
+  for (std::size_t k = 0; k < started.size(); ++k) out.push_back({started[k], command_line[k], first_step[k]});
+  return out;
 }
 
 std::string check_header(const Group& root, std::initializer_list<std::string_view> kinds) {

@@ -25,6 +25,9 @@ struct FileProvenance {
 };
 FileProvenance read_provenance(const Group& root);
 
+// The segments of the run that wrote `root` (/provenance/segments; a run never resumed: one, its own entry).
+std::vector<RunSegment> read_segments(const Group& root);
+
 // Records an input file in a run: its uuid and its history (so the output carries the lineage).
 void add_input(ToolRun& run, const Group& input_root);
 

@@ -52,7 +52,7 @@ OutputFile::~OutputFile() {
   file_.reset();  // closed before ~AtomicFile removes the temporary file
 }
 
-void OutputFile::commit() {
+void OutputFile::commit(bool durable) {
   if (committed_) return;
   if (path_ == "-") {
     if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw RuntimeError("-: cannot finish the HDF5 file");
@@ -69,7 +69,7 @@ void OutputFile::commit() {
     root_.reset();
     if (H5Fclose(file_.release()) < 0)
       throw RuntimeError(path_ + ": cannot finish writing the file (" + write_failure(path_, errno) + ")");
-    atomic_->commit();
+    atomic_->commit(durable);
   }
   committed_ = true;
 }

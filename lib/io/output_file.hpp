@@ -26,8 +26,9 @@ class OutputFile {
   // The new file's identity, recorded in /provenance.
   const std::string& uuid() const { return uuid_; }
 
-  // Closes the file and makes it appear (rename, or the image written to standard output).
-  void commit();
+  // Closes the file and makes it appear (rename, or the image written to standard output); `durable`: on the
+  // disk before it appears (a checkpoint that must survive a node failure).
+  void commit(bool durable = false);
 
  private:
   std::string path_;

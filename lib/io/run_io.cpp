@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/mesh_io.hpp"
 
 namespace frac::io {
@@ -10,6 +11,16 @@ namespace {
 const char* body_group(bool cells) { return cells ? "particles/cells" : "particles/nodes"; }
 const char* link_group(bool cells) { return cells ? "connectivity/beams" : "connectivity/bonds"; }
 const char* breaks_name(bool cells) { return cells ? "beam_breaks" : "bond_breaks"; }
+std::vector<BreakEvent> read_breaks_at(const Group& root, bool cells);
+constexpr const char* kObservableNames = "observable_names";  // in a checkpoint's copy of the output
+
+// Copies the object at `path` under `from` to the same path under `to` (a checkpoint's copy of the output).
+void copy_object(const Group& from, const std::string& path, Group& to) {
+  Hid lcpl(H5Pcreate(H5P_LINK_CREATE));
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  if (H5Ocopy(from.id(), path.c_str(), to.id(), path.c_str(), H5P_DEFAULT, lcpl.get()) < 0)
+    throw RuntimeError(to.where(path) + ": cannot copy the output so far (" + write_failure(to.file(), errno) + ")");
+}
 }  // namespace
 
 RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const double> mass,
@@ -30,8 +41,8 @@ RunWriter::RunWriter(Group& root, const mesh::NodeMesh& mesh, std::span<const do
   nodes.write("mass", mass, {bodies_}, "kg");
 }
 
-void RunWriter::write_frame(const BodyFrame& f) {
-  if (!position_) {
+void RunWriter::create_trajectory() {
+  {
     Group bodies = root_.group(body_group(cells_));
     // The link series sit in a subgroup: the node mesh already has a static `intact` (the notch).
     Group links_root = root_.group(link_group(cells_));
@@ -46,6 +57,22 @@ void RunWriter::write_frame(const BodyFrame& f) {
     intact_ = std::make_unique<SeriesWriter>(links, "intact", std::vector<hsize_t>{links_}, "", SeriesType::uint8);
     strain_ = std::make_unique<SeriesWriter>(links, "strain", std::vector<hsize_t>{links_}, "1");
   }
+}
+
+std::vector<RunWriter::Trajectory> RunWriter::trajectory() const {
+  const std::string bodies = body_group(cells_), links = std::string(link_group(cells_)) + "/trajectory";
+  std::vector<Trajectory> out{{position_.get(), bodies, "position"}, {velocity_.get(), bodies, "velocity"}};
+  if (cells_) {
+    out.push_back({angle_.get(), bodies, "angle"});
+    out.push_back({angular_velocity_.get(), bodies, "angular_velocity"});
+  }
+  out.push_back({intact_.get(), links, "intact"});
+  out.push_back({strain_.get(), links, "strain"});
+  return out;
+}
+
+void RunWriter::write_frame(const BodyFrame& f) {
+  if (!position_) create_trajectory();
   position_->append(f.step, f.time, std::span<const double>(f.position));
   velocity_->append(f.step, f.time, std::span<const double>(f.velocity));
   if (cells_) {
@@ -56,23 +83,64 @@ void RunWriter::write_frame(const BodyFrame& f) {
   strain_->append(f.step, f.time, std::span<const double>(f.strain));
 }
 
-void RunWriter::observe(const std::string& name, std::int64_t step, double time, std::span<const double> value,
-                        std::string_view unit) {
+SeriesWriter& RunWriter::observable(const std::string& name, std::vector<hsize_t> dims, std::string_view unit) {
   auto it = observables_.find(name);
   if (it == observables_.end()) {
     Group obs = root_.has("observables") ? root_.group("observables") : root_.create_group("observables");
-    std::vector<hsize_t> dims;
-    if (value.size() != 1) dims.push_back(value.size());
-    it = observables_.emplace(name, std::make_unique<SeriesWriter>(obs, name, dims, unit)).first;
+    it = observables_.emplace(name, std::make_unique<SeriesWriter>(obs, name, std::move(dims), unit)).first;
   }
-  it->second->append(step, time, value);
+  return *it->second;
+}
+
+void RunWriter::observe(const std::string& name, std::int64_t step, double time, std::span<const double> value,
+                        std::string_view unit) {
+  std::vector<hsize_t> dims;
+  if (value.size() != 1) dims.push_back(value.size());
+  observable(name, std::move(dims), unit).append(step, time, value);
+}
+
+void RunWriter::flush() {
+  for (const Trajectory& t : trajectory())
+    if (t.series) t.series->flush();
+  for (auto& [name, series] : observables_) series->flush();
 }
 
 void RunWriter::finish() {
-  for (auto* series : {&position_, &velocity_, &angle_, &angular_velocity_, &intact_, &strain_})
-    if (*series) (*series)->flush();
-  for (auto& [name, series] : observables_) series->flush();
-  Group obs = root_.has("observables") ? root_.group("observables") : root_.create_group("observables");
+  flush();
+  write_breaks(root_);
+}
+
+void RunWriter::copy_progress(Group& to) {
+  flush();
+  for (const Trajectory& t : trajectory())
+    if (t.series) copy_object(root_, t.parent + "/" + t.name, to);
+  std::vector<std::string> names;
+  for (auto& [name, series] : observables_) {
+    copy_object(root_, "observables/" + name, to);
+    names.push_back(name);
+  }
+  to.write_strings(kObservableNames, names);
+  write_breaks(to);
+}
+
+void RunWriter::replay(const Group& from) {
+  if (from.has(std::string(body_group(cells_)) + "/position")) {
+    create_trajectory();
+    for (const Trajectory& t : trajectory()) t.series->replay(from.group(t.parent), t.name);
+  }
+  if (!from.has(kObservableNames)) throw InputError(from.where() + ": not a checkpoint's copy of a run (no observable_names)");
+  for (const std::string& name : from.read_strings(kObservableNames)) {
+    const Group obs = from.group("observables");
+    const SeriesInfo info = read_series_info(obs, name);
+    const Group series = obs.group(name);
+    const std::string unit = series.has_attr("unit", "value") ? series.attr_string("unit", "value") : "";
+    observable(name, info.frame_dims, unit).replay(obs, name);
+  }
+  breaks_ = read_breaks_at(from, cells_);
+}
+
+void RunWriter::write_breaks(Group& root) const {
+  Group obs = root.has("observables") ? root.group("observables") : root.create_group("observables");
   Group g = obs.create_group(breaks_name(cells_));
   std::vector<std::int64_t> step, index;
   std::vector<double> time;
@@ -143,8 +211,11 @@ long long frame_at_time(const RunInfo& info, double t) {
 }
 
 std::vector<BreakEvent> read_breaks(const Group& root) {
-  const RunInfo info = read_run_info(root);
-  const bool cells = info.model == "dem";
+  return read_breaks_at(root, read_run_info(root).model == "dem");
+}
+
+namespace {
+std::vector<BreakEvent> read_breaks_at(const Group& root, bool cells) {
   std::vector<BreakEvent> out;
   const std::string path = std::string("observables/") + breaks_name(cells);
   if (!root.has(path)) return out;
@@ -158,5 +229,7 @@ std::vector<BreakEvent> read_breaks(const Group& root) {
   for (std::size_t k = 0; k < step.size(); ++k) out.push_back({step[k], time[k], index[k], mode[k]});
   return out;
 }
+
+}  // namespace
 
 }  // namespace frac::io

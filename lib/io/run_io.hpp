@@ -61,9 +61,25 @@ class RunWriter {
   void record_break(const BreakEvent& e) { breaks_.push_back(e); }
   // Writes what the series still buffer and the break events; call once at the end.
   void finish();
+  // Writes what the series buffer.
+  void flush();
+  // A checkpoint's copy of the output so far (io/checkpoint): every series, the list of the observables' names
+  // and the break events, under `to` at their paths in the run file.
+  void copy_progress(Group& to);
+  // Continues from such a copy: its frames, observables and break events appended, as if this writer had
+  // written them. InputError if they do not fit this run.
+  void replay(const Group& from);
   std::size_t frames() const { return position_ ? position_->frames() : 0; }
 
  private:
+  void create_trajectory();
+  struct Trajectory {
+    SeriesWriter* series;
+    std::string parent, name;
+  };
+  std::vector<Trajectory> trajectory() const;  // the trajectory series (null before the first frame) and their paths
+  SeriesWriter& observable(const std::string& name, std::vector<hsize_t> dims, std::string_view unit);
+  void write_breaks(Group& root) const;
   Group& root_;  // outlives the writer (an OutputFile's root)
   bool cells_;
   std::size_t bodies_, links_;

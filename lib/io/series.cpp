@@ -61,7 +61,7 @@ void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type,
 
 SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsize_t> frame_dims,
                            std::string_view unit, SeriesType type)
-    : group_(parent.create_group(name)), frame_dims_(std::move(frame_dims)) {
+    : group_(parent.create_group(name)), frame_dims_(std::move(frame_dims)), type_(type) {
   for (auto d : frame_dims_) frame_size_ *= d;
   rows_per_chunk_ = chunk_rows(frame_size_);
   step_ = create_extendible(group_, "step", H5T_STD_I64LE, {}, false);
@@ -174,38 +174,68 @@ SeriesInfo read_series_info(const Group& parent, std::string_view name) {
 }
 
 template <class T>
-std::vector<T> read_series_frame(const Group& parent, std::string_view name, long long frame) {
-  const SeriesInfo info = read_series_info(parent, name);
-  const auto frames = static_cast<long long>(info.step.size());
-  const long long k = frame < 0 ? frames + frame : frame;
+std::vector<T> read_series_rows(const Group& parent, std::string_view name, const SeriesInfo& info, std::size_t first,
+                                std::size_t count) {
   const Group g = parent.group(name);
-  if (k < 0 || k >= frames)
-    throw InputError(g.where() + ": no frame " + std::to_string(frame) + " (it has " + std::to_string(frames) +
-                     ")");
+  if (first > info.step.size() || count > info.step.size() - first)
+    throw InputError(g.where() + ": no frames " + std::to_string(first) + " to " + std::to_string(first + count) +
+                     " (it has " + std::to_string(info.step.size()) + ")");
   Hid d(H5Dopen2(g.id(), "value", H5P_DEFAULT));
   Hid ftype(H5Dget_type(d.get()));
   if (d.get() < 0 || ftype.get() < 0) throw InputError(g.where("value") + ": damaged dataset");
   require_number_type(ftype.get(), !std::is_same_v<T, double>, g.where("value"));
-  std::vector<hsize_t> start{static_cast<hsize_t>(k)}, count{1};
-  hsize_t size = 1;
+  std::vector<hsize_t> start{static_cast<hsize_t>(first)}, counts{static_cast<hsize_t>(count)};
+  hsize_t size = count;
   for (auto fd : info.frame_dims) {
     start.push_back(0);
-    count.push_back(fd);
+    counts.push_back(fd);
     if (fd != 0 && size > (hsize_t{1} << 40) / fd) throw InputError(g.where("value") + ": damaged dataspace");
     size *= fd;
   }
   require_fits_storage(d.get(), ftype.get(), size, g.where("value"));
   Hid fspace(H5Dget_space(d.get()));
-  H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
-  Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
+  H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, counts.data(), nullptr);
+  Hid mspace(H5Screate_simple(static_cast<int>(counts.size()), counts.data(), nullptr));
   std::vector<T> out(size);
   hid_t mem = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE
               : std::is_same_v<T, std::int64_t> ? H5T_NATIVE_INT64
                                                 : H5T_NATIVE_UINT8;
   if (size > 0 && H5Dread(d.get(), mem, mspace.get(), fspace.get(), H5P_DEFAULT, out.data()) < 0)
-    throw InputError(g.where("value") + ": cannot read frame " + std::to_string(k));
+    throw InputError(g.where("value") + ": cannot read frames " + std::to_string(first) + " to " +
+                     std::to_string(first + count - 1));
   return out;
 }
+
+template <class T>
+std::vector<T> read_series_frame(const Group& parent, std::string_view name, long long frame) {
+  const SeriesInfo info = read_series_info(parent, name);
+  const auto frames = static_cast<long long>(info.step.size());
+  const long long k = frame < 0 ? frames + frame : frame;
+  if (k < 0 || k >= frames)
+    throw InputError(parent.group(name).where() + ": no frame " + std::to_string(frame) + " (it has " +
+                     std::to_string(frames) + ")");
+  return read_series_rows<T>(parent, name, info, static_cast<std::size_t>(k), 1);
+}
+
+void SeriesWriter::replay(const Group& parent, std::string_view name) {
+  const SeriesInfo info = read_series_info(parent, name);
+  if (info.frame_dims != frame_dims_)
+    throw InputError(parent.group(name).where() + ": frames of another shape than this run's");
+  const std::size_t frames = info.step.size();
+  for (std::size_t first = 0; first < frames; first += rows_per_chunk_) {
+    const std::size_t rows = std::min(rows_per_chunk_, frames - first);
+    auto append_rows_of = [&](const auto& values, hid_t mem_type) {
+      for (std::size_t r = 0; r < rows; ++r)
+        append_raw(info.step[first + r], info.time[first + r], mem_type, values.data() + r * frame_size_, frame_size_);
+    };
+    switch (type_) {
+      case SeriesType::float64: append_rows_of(read_series_rows<double>(parent, name, info, first, rows), H5T_NATIVE_DOUBLE); break;
+      case SeriesType::int64: append_rows_of(read_series_rows<std::int64_t>(parent, name, info, first, rows), H5T_NATIVE_INT64); break;
+      case SeriesType::uint8: append_rows_of(read_series_rows<std::uint8_t>(parent, name, info, first, rows), H5T_NATIVE_UINT8); break;
+    }
+  }
+}
+
 template std::vector<double> read_series_frame<double>(const Group&, std::string_view, long long);
 template std::vector<std::int64_t> read_series_frame<std::int64_t>(const Group&, std::string_view, long long);
 template std::vector<std::uint8_t> read_series_frame<std::uint8_t>(const Group&, std::string_view, long long);

@@ -29,6 +29,9 @@ class SeriesWriter {
   void append(std::int64_t step, double time, std::span<const std::int64_t> frame);
   // Writes the buffered frames to the file.
   void flush();
+  // Appends every frame of the series <parent>/<name> (a checkpoint's copy of this series): InputError if its
+  // frames have another shape.
+  void replay(const Group& parent, std::string_view name);
   std::size_t frames() const { return frames_; }  // appended, written or not
 
  private:
@@ -41,6 +44,7 @@ class SeriesWriter {
   Group group_;
   Hid step_, time_, value_;
   std::vector<hsize_t> frame_dims_;
+  SeriesType type_;
   std::size_t frame_size_ = 1;
   hid_t value_type_ = -1;  // memory type of the values (the native type of the series' file type)
   std::size_t value_bytes_ = 0;

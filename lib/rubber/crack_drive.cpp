@@ -32,4 +32,10 @@ std::size_t CrackDrive::cut(Model& model, double t, std::span<const double> q, d
   return removed;
 }
 
+void CrackDrive::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "drive");
+  archive.value("cut", next_);
+  if (archive.loading() && next_ > bond_.size()) archive.refuse("cut", "more cuts than the knife has bonds");
+}
+
 }  // namespace frac::rubber

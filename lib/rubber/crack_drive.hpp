@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "core/state_archive.hpp"
 #include "rubber/crack.hpp"
 #include "rubber/model.hpp"
 
@@ -36,6 +37,8 @@ class CrackDrive {
   double cut_time(std::size_t k) const { return time_[k]; }  // s
   double end_time() const { return end_time_; }              // s: when the knife reaches the end
   double end_reference_x() const { return end_x_; }          // m: reference x where the drive stops
+  // The state a continuation needs (core/state_archive): how many bonds the knife has cut.
+  void visit_state(StateArchive& archive);
 
  private:
   std::vector<std::size_t> bond_;  // scheduled crossing bonds, by crossing x

@@ -272,6 +272,22 @@ void Model::accelerations(double, std::span<const double> q, std::span<const dou
   }
 }
 
+void Model::visit_state(StateArchive& archive) {
+  StateArchive::Scope scope(archive, "model");
+  archive.array("status", status_, status_.size());
+  archive.array("past_cutoff", past_, past_.size());
+  archive.array("cutoff", cutoff_, cutoff_.size());
+  archive.array("frozen", frozen_, frozen_.size());
+  archive.array("q_previous", q_prev_, q_prev_.size());
+  if (!archive.loading()) return;
+  for (const std::uint8_t s : status_)
+    if (s > kFreezing) archive.refuse("status", "holds a status no bond has (" + std::to_string(s) + ")");
+  if (!q_prev_.empty()) {
+    ctx_.x_prev = q_prev_.data();
+    ctx_.y_prev = q_prev_.data() + lattice_.n;
+  }
+}
+
 void Model::forces(std::span<const double> q, std::span<double> f) {
   const std::size_t n = lattice_.n;
   // Forces without damping: evaluate with zero velocities (the damping term vanishes exactly).

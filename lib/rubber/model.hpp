@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "core/state_archive.hpp"
 #include "dynamics/integrator.hpp"
 #include "rubber/bond_law.hpp"
 #include "rubber/forces.hpp"
@@ -114,6 +115,10 @@ class Model final : public dynamics::System {
   // Appends the bonds newly beyond u_c to `out` and marks them recorded; clears the counters.
   void take_events(std::vector<std::size_t>& out);
   void clear_breaks();
+  // The state a continuation needs (core/state_archive), under "model/": every bond's status, whether it went past
+  // u_c, its cut-off (toughening raises them), and the frozen three-body energies with the positions they are
+  // frozen from (Failure::freeze).
+  void visit_state(StateArchive& archive);
   // Describes the first node whose acceleration in `a` is not finite and the term that made it.
   std::string diagnose_nonfinite(std::span<const double> q, std::span<const double> a) const;
 

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "core/signals.hpp"
 #include "dynamics/runaway.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/three_body_residual.hpp"
@@ -163,7 +165,8 @@ struct SpeedFit {
 
 }  // namespace
 
-RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter* writer, Progress& progress) {
+RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter* writer, Progress& progress,
+                         const io::Continuation& continuation) {
   const RubberScene& sc = su.scene;
   Model& model = *sys.model;
   const Lattice& L = model.lattice();
@@ -261,9 +264,49 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
   };
 
   std::int64_t step = 0;
-  observe(0);
-  write_frame(0);
   double next_frame = sc.frame_interval > 0 ? sc.frame_interval : 1e300;
+  // Everything the loop carries from step to step: what a checkpoint saves and a continuation loads.
+  const auto visit_state = [&](StateArchive& a) {
+    integ->visit_state(a);
+    model.visit_state(a);
+    if (sys.drive) sys.drive->visit_state(a);
+    StateArchive::Scope scope(a, "run");
+    a.value("step", step);
+    a.value("next_frame", next_frame);
+    a.value("last_observed", last_observed);
+    a.value("last_frame_step", frame.step);
+    a.value("events", sum.events);
+    a.value("irreversible", sum.irreversible);
+    a.value("toughened", sum.toughened);
+    a.value("driven", sum.driven);
+    a.value("drive_energy", sum.drive_energy);
+    a.value("energy_start", sum.energy_start);
+    a.value("energy_end", sum.energy_end);
+    a.value("tip_speed", sum.tip_speed);
+    for (auto [name, t] : {std::pair{"tip", &tip}, std::pair{"tip_start", &sum.tip_start}}) {
+      StateArchive::Scope tip_scope(a, name);
+      a.value("found", t->found);
+      a.value("bond", t->bond);
+      a.value("reference_x", t->reference_x);
+      a.value("lab_x", t->lab_x);
+      a.value("broken", t->broken);
+    }
+    StateArchive::Scope fit_scope(a, "speed_fit");
+    a.array("t", fit.t, fit.t.size());
+    a.array("x", fit.x, fit.x.size());
+    a.value("head", fit.head);
+    a.value("count", fit.count);
+    if (a.loading() && (fit.head >= fit.t.size() || fit.count > fit.t.size()))
+      a.refuse("head", "outside the speed window");
+  };
+  if (continuation.resume) {
+    visit_state(*continuation.resume);
+  } else {
+    observe(0);
+    write_frame(0);
+  }
+  std::optional<DeferSignals> defer;
+  if (continuation.checkpoints) defer.emplace();
   const std::string stop_tip = "the crack tip reached stop.tip_margin from the far edge";
   std::string reason = "stop.t_max reached";
   const std::function<std::string()> line = [&] {
@@ -316,6 +359,10 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
       next_frame += sc.frame_interval;
     }
     progress.tick(line);
+    if (io::Checkpoints* ck = continuation.checkpoints; ck && !stop) {
+      if (ck->due(step)) ck->write(step, integ->t(), visit_state);
+      ck->stop_if_signalled(step, integ->t(), visit_state);
+    }
   }
   sum.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   sum.nodes = n;

@@ -10,6 +10,7 @@
 
 #include "core/progress.hpp"
 #include "dynamics/integrator.hpp"
+#include "io/checkpoint.hpp"
 #include "io/run_io.hpp"
 #include "mesh/node_mesh.hpp"
 #include "rubber/crack.hpp"
@@ -49,7 +50,10 @@ struct RubberSummary {
   std::size_t nodes = 0;
 };
 
-// Runs to the stop rule. `writer` may be null (tests, benchmarks).
-RubberSummary run_rubber(RubberSystem& system, const RubberSetup& setup, io::RunWriter* writer, Progress& progress);
+
+// Runs to the stop rule. `writer` may be null (tests, benchmarks). With checkpoints, one is written when due and
+// when a stop signal arrives (then Interrupted is thrown).
+RubberSummary run_rubber(RubberSystem& system, const RubberSetup& setup, io::RunWriter* writer, Progress& progress,
+                         const io::Continuation& continuation = {});
 
 }  // namespace frac::rubber

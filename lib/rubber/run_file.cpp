@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
@@ -22,19 +23,21 @@ mesh::NodeMesh read_run_mesh(const io::Group& in, const std::string& name) {
 
 RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh,
                           const Scene& scene, ToolRun run, const io::Group& input, const std::string& output,
-                          Progress& progress) {
+                          const CheckpointOptions& checkpoint, Progress& progress) {
   for (auto& d : setup.derived()) run.parameters.push_back(std::move(d));
   io::add_input(run, input);
+  io::RunCheckpoints checkpoints(checkpoint, output, run, [&](const std::string& m) { progress.note(m); });
   io::OutputFile out(output);
   io::write_header(out.root(), "run", run, out.uuid());
   out.root().group("parameters/rubber-run").write_strings("scene_text", {scene.source_text()});
   const std::vector<double> mass(mesh.nodes(), setup.node_mass);
   io::RunWriter writer(out.root(), mesh, mass);
-  const RubberSummary s = run_rubber(system, setup, &writer, progress);
+  const RubberSummary s = run_rubber(system, setup, &writer, progress, checkpoints.start(writer));
   out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
   out.root().set_attr("end_time", s.time);
   out.root().set_attr("stop_reason", s.stop_reason);
   out.commit();
+  checkpoints.finish();
   return s;
 }
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "core/checkpoint_options.hpp"
 #include "core/progress.hpp"
 #include "core/provenance.hpp"
 #include "core/scene.hpp"
@@ -20,9 +21,10 @@ mesh::NodeMesh read_run_mesh(const io::Group& in, const std::string& name);
 
 // Runs `system` and writes the run file `output` ("-": standard output). `run`: the provenance record so far
 // (cli::scene_run); the setup's derived parameters and the input's provenance are added here.
+// Checkpoints as `checkpoint` says (io/checkpoint); a run whose checkpoint exists continues from it.
 RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh,
                           const Scene& scene, ToolRun run, const io::Group& input, const std::string& output,
-                          Progress& progress);
+                          const CheckpointOptions& checkpoint, Progress& progress);
 
 // The one line a run reports: steps, time, stop reason, bonds past u_c, the crack tip and its speed against
 // the wave speeds, the driven seed, the energy, the wall time.
