@@ -48,7 +48,7 @@ void unregister_temp(const std::string& path) {
 }
 
 // Removes the temporaries of `name` in `dir` that no process holds locked: left by a killed writer.
-void remove_abandoned_temps(const std::filesystem::path& dir, const std::string& name) {
+void remove_abandoned_in(const std::filesystem::path& dir, const std::string& name) {
   const std::string prefix = "." + name + ".tmp-";
   DIR* d = opendir(dir.c_str());
   if (!d) return;
@@ -69,6 +69,11 @@ void remove_abandoned_temps(const std::filesystem::path& dir, const std::string&
 
 }  // namespace
 
+void remove_abandoned_temps(const std::string& target) {
+  const std::filesystem::path t(target);
+  remove_abandoned_in(t.has_parent_path() ? t.parent_path() : std::filesystem::path("."), t.filename().string());
+}
+
 std::string write_failure(const std::string& path, int error) {
   if (path == "-") return error != 0 ? std::strerror(error) : "write error";
   const std::filesystem::path p(path);
@@ -87,7 +92,7 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
     throw UsageError(target_ + ": folder '" + dir.string() + "' does not exist");
   if (t.filename().empty() || std::filesystem::is_directory(t, ec))
     throw UsageError(target_ + ": is a folder, not a file name");
-  remove_abandoned_temps(dir, t.filename().string());
+  remove_abandoned_in(dir, t.filename().string());
   std::string name = (dir / ("." + t.filename().string() + ".tmp-XXXXXX")).string();
   std::vector<char> buf(name.begin(), name.end());
   buf.push_back('\0');

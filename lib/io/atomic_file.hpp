@@ -33,6 +33,9 @@ class AtomicFile {
 // space left, else the system's message for `error` (an errno value).
 std::string write_failure(const std::string& path, int error);
 
+// Removes the temporaries of `target` that no process holds locked: left by a killed writer.
+void remove_abandoned_temps(const std::string& target);
+
 // Writes `text` to `path` atomically; "-" writes it to standard output.
 void write_file_atomically(const std::string& path, const std::string& text);
 

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/signals.hpp"
 #include "core/version.hpp"
+#include "io/atomic_file.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -167,6 +168,7 @@ void Checkpoints::remove() {
   if (!enabled()) return;
   std::error_code ec;
   std::filesystem::remove(path_, ec);
+  remove_abandoned_temps(path_);  // of a checkpoint a killed run was writing
 }
 
 void Checkpoints::stop_if_signalled(std::int64_t step, double time, const std::function<void(StateArchive&)>& visit) {
