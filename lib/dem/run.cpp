@@ -168,6 +168,8 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     observe(0);
     write_frame(0);
   }
+  const std::int64_t first_step = step;  // (of this process: the rate and the ETA count from here)
+  const double first_t = integrator.t();
   std::optional<DeferSignals> defer;
   if (continuation.checkpoints) defer.emplace();
   for (;;) {
@@ -215,9 +217,9 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
       std::ostringstream s;
       s.precision(3);
       const double el = progress.elapsed();
-      s << "t = " << t << " s, step " << step << ", " << static_cast<double>(step) / std::max(el, 1e-9)
-        << " steps/s, " << broken.size() << " beams broken, ETA " << (stop.t_max - t) / std::max(t, 1e-30) * el
-        << " s (at most)";
+      s << "t = " << t << " s, step " << step << ", " << static_cast<double>(step - first_step) / std::max(el, 1e-9)
+        << " steps/s, " << broken.size() << " beams broken, ETA "
+        << (stop.t_max - t) / std::max(t - first_t, 1e-30) * el << " s (at most)";
       return s.str();
     });
     if (!reason.empty()) {

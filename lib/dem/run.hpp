@@ -25,6 +25,8 @@ struct RunSummary {
   double energy_scale = 0;    // J: the larger of the initial energy and the boundary work
   double wall_seconds = 0;
   int start_evaluations = 0;  // force evaluations of an exact gear5 start (0 for the usual start)
+  int checkpoints = 0;          // written by this process
+  double checkpoint_seconds = 0;  // wall time spent writing them
 };
 
 struct Ledger {

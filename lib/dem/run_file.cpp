@@ -53,7 +53,9 @@ RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const i
   io::write_header(out.root(), "run", run, out.uuid());
   out.root().group("parameters/dem-run").write_strings("scene_text", {scene.source_text()});
   io::RunWriter writer(out.root(), *sim.cell_mesh, sim.model.bodies().mass, sim.model.bodies().inertia);
-  const RunSummary s = sim.run(&writer, progress, checkpoints.start(writer));
+  RunSummary s = sim.run(&writer, progress, checkpoints.start(writer));
+  s.checkpoints = checkpoints.written();
+  s.checkpoint_seconds = checkpoints.seconds();
   out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
   out.root().set_attr("end_time", s.time);
   out.root().set_attr("stop_reason", s.stop_reason);
@@ -70,6 +72,7 @@ std::string summary_line(const RunSummary& s, const Simulation& sim) {
   line << s.steps << " steps of " << s.dt << " s to t = " << s.time << " s (" << s.stop_reason << "), " << s.broken
        << " of " << sim.model.beams().size() << " beams broken, energy balance within "
        << s.energy_error / std::max(s.energy_scale, 1e-300) * 100 << "% , " << s.wall_seconds << " s wall";
+  if (s.checkpoints > 0) line << " (" << s.checkpoints << " checkpoints, " << s.checkpoint_seconds << " s)";
   return line.str();
 }
 

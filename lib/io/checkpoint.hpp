@@ -133,6 +133,8 @@ class RunCheckpoints {
                  const std::function<void(const std::string&)>& note);
   Continuation start(RunWriter& writer);
   void finish() { checkpoints_->remove(); }
+  int written() const { return checkpoints_ ? checkpoints_->written() : 0; }
+  double seconds() const { return checkpoints_ ? checkpoints_->seconds() : 0; }
 
  private:
   CheckpointOptions options_;

@@ -305,6 +305,7 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
     observe(0);
     write_frame(0);
   }
+  const std::int64_t first_step = step;  // (of this process: the time loop's rate counts from here)
   std::optional<DeferSignals> defer;
   if (continuation.checkpoints) defer.emplace();
   const std::string stop_tip = "the crack tip reached stop.tip_margin from the far edge";
@@ -366,6 +367,7 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
   }
   sum.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   sum.nodes = n;
+  sum.loop_steps = step - first_step;
   // The final state: always an observation and a frame.
   if (last_observed != step) observe(step);
   if (!writer || writer->frames() == 0 || frame.step != step) write_frame(step);

@@ -44,10 +44,15 @@ struct RubberSummary {
   double energy_start = 0, energy_end = 0;  // J, kinetic + potential
   double wall_seconds = 0;
   double loop_seconds = 0;          // wall time of the time loop alone (steps, events, observations)
+  long long loop_steps = 0;         // steps of that loop (fewer than `steps` in a run continued from a checkpoint)
   double ns_per_node_step() const {
-    return steps > 0 && nodes > 0 ? 1e9 * loop_seconds / (static_cast<double>(steps) * static_cast<double>(nodes)) : 0;
+    return loop_steps > 0 && nodes > 0
+               ? 1e9 * loop_seconds / (static_cast<double>(loop_steps) * static_cast<double>(nodes))
+               : 0;
   }
   std::size_t nodes = 0;
+  int checkpoints = 0;            // written by this process
+  double checkpoint_seconds = 0;  // wall time spent writing them
 };
 
 

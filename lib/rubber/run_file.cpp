@@ -32,7 +32,9 @@ RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const 
   out.root().group("parameters/rubber-run").write_strings("scene_text", {scene.source_text()});
   const std::vector<double> mass(mesh.nodes(), setup.node_mass);
   io::RunWriter writer(out.root(), mesh, mass);
-  const RubberSummary s = run_rubber(system, setup, &writer, progress, checkpoints.start(writer));
+  RubberSummary s = run_rubber(system, setup, &writer, progress, checkpoints.start(writer));
+  s.checkpoints = checkpoints.written();
+  s.checkpoint_seconds = checkpoints.seconds();
   out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
   out.root().set_attr("end_time", s.time);
   out.root().set_attr("stop_reason", s.stop_reason);
@@ -56,6 +58,7 @@ std::string summary_line(const RubberSummary& s, const RubberSystem& system, con
   line << ", energy " << s.energy_start << " -> " << s.energy_end << " J, " << s.wall_seconds << " s wall ("
        << s.ns_per_node_step() << " ns per node-step on " << system.model->threads() << " thread"
        << (system.model->threads() > 1 ? "s" : "") << ")";
+  if (s.checkpoints > 0) line << ", " << s.checkpoints << " checkpoints (" << s.checkpoint_seconds << " s)";
   return line.str();
 }
 

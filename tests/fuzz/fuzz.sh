@@ -20,6 +20,23 @@ work=$(pwd)
 "$bin/dem-run" --scene "$scenes/explosion.ini" mesh.h5 --stop.t_max 1e-4 --output.frame_interval 1e-4 -q -o broken.h5
 "$bin/fragment-count" broken.h5 -q -o fragments.h5
 
+# Checkpoints: a run killed after its first checkpoint (every 2 steps) leaves one; the same command line with
+# --resume reads it.
+make_checkpoint() {
+  local out=$1; shift
+  "$@" -o "$out" --checkpoint-every 2 -q &
+  local pid=$!
+  for _ in $(seq 500); do [[ -s $out.ckpt ]] && break; sleep 0.02; done
+  kill -KILL "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  [[ -s $out.ckpt ]] || { echo "fuzz.sh: no checkpoint of $*" >&2; exit 1; }
+}
+dem_checkpointed=("$bin/dem-run" --scene "$scenes/explosion.ini" "$work/mesh.h5" --stop.t_max 2e-3 --output.frame_interval 5e-4)
+rubber_checkpointed=("$bin/rubber-run" --scene "$scenes/stretch.ini" "$work/strip.h5" --crack.seed_length 0 --stop.t_max 2e-4
+                     --output.frame_interval 3e-5)
+make_checkpoint dem.h5 "${dem_checkpointed[@]}"
+make_checkpoint rubber-ck.h5 "${rubber_checkpointed[@]}"
+
 cp "$scenes/explosion.ini" explosion.ini
 cp "$scenes/stretch.ini" stretch.ini
 awk 'BEGIN { print "# fragment masses"; for (k = 1; k <= 200; k++) printf "%.6g\n", (1 - (k - 0.5) / 200) ^ (-1 / 1.5) }' > values.txt
@@ -51,6 +68,8 @@ short_dem=(--stop.t_max 2e-6 -q -o out.h5)
   echo "$work/fragments.h5 $bin/powerlaw-fit - --bootstrap 0 --gof-samples 0 -q -o out.h5 <{}"
   echo "$work/fragments.h5 $bin/render $work/broken.h5 --fragments {} -q -o out.png"
   echo "$work/fragments.h5 $bin/h5-xdmf $work/broken.h5 --fragments {} -q -o out.xmf"
+  echo "$work/dem.h5.ckpt ${dem_checkpointed[*]} --resume {} -q -o out.h5"
+  echo "$work/rubber-ck.h5.ckpt ${rubber_checkpointed[*]} --resume {} -q -o out.h5"
   # Text inputs; a damaged scene may ask for any time step or length of run: the steps are capped.
   echo "$work/explosion.ini $bin/dem-run --scene {} $work/mesh.h5 --stop.t_max 2e-6 --stop.max_steps 40 -q -o out.h5"
   echo "$work/stretch.ini $bin/rubber-run --scene {} $work/strip.h5 --crack.seed_length 0 --stop.t_max 2e-5 --stop.max_steps 200 -q -o out.h5"
