@@ -13,7 +13,7 @@ out=bench/out
 mkdir -p "$out"
 scenes=data/scenes
 full_model=(--physics.contacts on --physics.breaking on --physics.friction on --physics.damping on
-            --material.friction 0.3 --material.gamma_n 1000 --material.gamma_t 1000)
+            --material.friction 0.3 --material.gamma_n 1000 --material.gamma_t 1000 --integrator.dt auto)
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
@@ -43,9 +43,9 @@ for side in $sides; do
     # "(N checkpoints, T s)": the mean time of one
     per+=("$(sed -n 's/.*(\([0-9]*\) checkpoints, \([0-9.e+-]*\) s).*/\2 \1/p' <<<"$line" | awk '{ print $1 / $2 }')")
   done
-  # A checkpoint kept: the run killed once its checkpoint at step 40 exists.
+  # A checkpoint kept: the run killed once its checkpoint half way exists.
   rm -f "$out/checkpoint-run.h5.ckpt"
-  "${run[@]}" --checkpoint-every 40 -q &
+  "${run[@]}" --checkpoint-every $((steps / 2)) -q &
   pid=$!
   for _ in $(seq 3000); do [[ -s $out/checkpoint-run.h5.ckpt ]] && break; sleep 0.1; done
   kill -KILL "$pid" 2>/dev/null || true

@@ -49,7 +49,8 @@ slurmd_port=$((ctld_port + 1))
 
 # --- slurm.conf: one node, one partition, no cgroups, no accounting, short timers ---------------------
 host=$(hostname -s)
-cpus=$(nproc)
+# nproc alone counts OMP_NUM_THREADS (1 in the tests' environment).
+cpus=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
 # What the jobs may use: the free memory less a margin for the daemons and the rest of the machine.
 mem=$(free -m | awk '/^Mem:/ { m = int($7 * 0.8); print (m > 100 ? m : 100) }')
 : > "$dir/plugstack.conf"  # no SPANK plugins (the system's plugstack.conf is not ours to read)
@@ -63,7 +64,8 @@ SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
 AuthType=auth/munge
 CredType=cred/munge
-AuthInfo=socket=$munge_socket
+# cred_expire: also how long a requeued job waits before it may start again (default 120 s).
+AuthInfo=cred_expire=10,socket=$munge_socket
 StateSaveLocation=$dir/state
 SlurmdSpoolDir=$dir/spool
 SlurmctldPidFile=$dir/slurmctld.pid

@@ -1,0 +1,204 @@
+#!/usr/bin/env bash
+# The experiments on a real SLURM cluster: a private one-node cluster (start_cluster.sh) under a temporary
+# folder, stopped again however the test ends.
+#  1. The explosion's miniature through its Make target, locally and inside an allocation (salloc, every run
+#     launched by srun as a step of it): the same tables byte for byte (less the provenance line with its
+#     time), the same runs (h5diff without /provenance).
+#  2. scripts/slurm/experiment.sbatch in miniature: the job array over seeds, then the analysis after it
+#     (--dependency=afterok): the same results again.
+#  3. The time limit: a dem-run of about 75 s as a job of --time=1 --signal=TERM@20; the signal stops it with a
+#     checkpoint, the job requeues itself (timelimit.sbatch), the next part continues the run, and the run
+#     equals an uninterrupted local one; its provenance lists the one continuation.
+# Exit 77 (skip) when the cluster cannot run here.
+# Usage: cluster.sh SOURCE_DIR BUILD_DIR WORK_DIR [CELLS]   (CELLS: the time-limit run's disc, default 20000)
+set -euo pipefail
+src=$1 build=$2 work=$3 cells=${4:-20000}
+here=$(cd "$(dirname "$0")" && pwd)
+bin=$build/tools
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+say() { echo "[${SECONDS}s] $*"; }
+for tool in dem-run mesh-gen fragment-count; do [[ -x $bin/$tool ]] || fail "no $bin/$tool"; done
+command -v h5diff >/dev/null || fail "h5diff not found (hdf5-tools)"
+
+# Clusters of earlier runs of this test that were killed before their trap ran (the owner is gone).
+for old in /tmp/fracture-cluster.*; do
+  [[ -f $old/owner.pid ]] || continue
+  kill -0 "$(cat "$old/owner.pid")" 2>/dev/null || bash "$here/stop_cluster.sh" "$old"
+done
+
+cluster=$(mktemp -d /tmp/fracture-cluster.XXXXXX)
+echo $$ > "$cluster/owner.pid"
+steps_before=$(pgrep -x slurmstepd | sort || true)
+ref_pid=
+cleanup() {
+  local status=$?
+  set +e
+  [[ -n $ref_pid ]] && kill "$ref_pid" 2>/dev/null && wait "$ref_pid" 2>/dev/null
+  # The daemons' logs, for a failure (the cluster's folder is removed).
+  [[ $status -eq 0 || $status -eq 77 ]] || cp -r "$cluster/log" "$work/cluster-logs" 2>/dev/null
+  bash "$here/stop_cluster.sh" "$cluster"
+  local left
+  left=$(pgrep -af -- "$cluster")
+  left+=$(comm -13 <(echo "$steps_before") <(pgrep -x slurmstepd | sort) | xargs -r -n1 ps -o pid=,args= -p)
+  if [[ -n $left ]]; then
+    echo "FAIL: processes of the cluster left behind: $left" >&2
+    status=1
+  fi
+  exit "$status"
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+set +e
+bash "$here/start_cluster.sh" "$cluster"
+rc=$?
+set -e
+[[ $rc -eq 77 ]] && exit 77
+[[ $rc -eq 0 ]] || fail "start_cluster.sh: exit $rc"
+source "$cluster/env.sh"
+export STEP_LOG
+
+# job_field JOB FIELD: a field of scontrol's record of the job (finished jobs stay MinJobAge = 10 min).
+job_field() { scontrol -o show job "$1" | tr ' ' '\n' | awk -F= -v k="$2" '$1 == k { print substr($0, length(k) + 2); exit }'; }
+# wait_gone JOB SECONDS: until the job (every task of an array) has left the queue.
+wait_gone() {
+  local deadline=$((SECONDS + $2))
+  while [[ -n $(squeue -h -j "$1" 2>/dev/null) ]]; do
+    ((SECONDS < deadline)) || fail "job $1 still queued after $2 s: $(squeue -j "$1")"
+    sleep 1
+  done
+}
+
+# --- 1 and 2: the explosion's miniature, locally, in an allocation, as the job array ---------------------
+# Every variant writes to the same RESULTS path and is then moved aside: the tables name their inputs' paths.
+results=$work/results
+mini=(-C "$src" -f Makefile.analysis MINI=1 NO_BUILD=1 BUILD="$build" RESULTS="$results" JOBS=1)
+launch="srun -n1 -c1 bash $here/record_step.sh"
+
+say "explosion (MINI) locally"
+make "${mini[@]}" explosion > "$work/local.log" 2>&1 || { tail -n 20 "$work/local.log"; fail "make explosion (local)"; }
+mv "$results" "$work/local"
+
+say "explosion (MINI) in an allocation: salloc -n1 -c1, LAUNCH='srun -n1 -c1'"
+STEP_LOG=$work/steps-salloc.txt
+salloc -n1 -c1 --time=10 --job-name=salloc-explosion make "${mini[@]}" LAUNCH="$launch" explosion \
+  > "$work/salloc.log" 2>&1 || { tail -n 20 "$work/salloc.log"; fail "salloc make explosion"; }
+mv "$results" "$work/salloc"
+
+say "scripts/slurm/experiment.sbatch (MINI): array over seeds 1-2, then the analysis"
+STEP_LOG=$work/steps-array.txt
+sbatch_args=(MINI=1 BUILD="$build" RESULTS="$results" LAUNCH="$launch")
+array=$(cd "$src" && sbatch --parsable --array=1-2 --time=10 -o "$work/array-%A_%a.out" \
+  scripts/slurm/experiment.sbatch "${sbatch_args[@]}")
+analysis=$(cd "$src" && sbatch --parsable --dependency=afterok:"$array" --time=10 -o "$work/analysis-%j.out" \
+  scripts/slurm/experiment.sbatch "${sbatch_args[@]}")
+wait_gone "$array" 120
+for task in 1 2; do
+  state=$(job_field "${array}_$task" JobState)
+  [[ $state == COMPLETED ]] || { cat "$work/array-${array}_$task.out"; fail "array task $task: $state"; }
+done
+wait_gone "$analysis" 120
+state=$(job_field "$analysis" JobState)
+[[ $state == COMPLETED ]] || { cat "$work/analysis-$analysis.out"; fail "analysis job: $state"; }
+mv "$results" "$work/array"
+
+# same_results A B: the same files; tables (CSV, text, Markdown) byte for byte but for the '# tool=' line of
+# provenance (it holds the time and the inputs' uuids); every HDF5 file equal but for /provenance.
+same_results() {
+  local a=$1 b=$2 f
+  diff <(cd "$a" && find . -type f | sort) <(cd "$b" && find . -type f | sort) || fail "$b: other files than $a"
+  local tables=0 runs=0
+  while IFS= read -r f; do
+    cmp -s <(grep -v '^# tool=' "$a/$f") <(grep -v '^# tool=' "$b/$f") ||
+      fail "$f differs: $(diff <(grep -v '^# tool=' "$a/$f") <(grep -v '^# tool=' "$b/$f") | head -n 5)"
+    tables=$((tables + 1))
+  done < <(cd "$a" && find . -type f \( -name '*.csv' -o -name '*.txt' -o -name '*.md' \) | sort)
+  while IFS= read -r f; do
+    h5diff -q --exclude-path /provenance "$a/$f" "$b/$f" || fail "$f differs (h5diff without /provenance)"
+    runs=$((runs + 1))
+  done < <(cd "$a" && find . -type f -name '*.h5' | sort)
+  ((tables >= 10 && runs >= 20)) || fail "only $tables tables and $runs HDF5 files in $a"
+  say "$b: $tables tables and $runs HDF5 files as $a"
+}
+same_results "$work/local" "$work/salloc"
+same_results "$work/local" "$work/array"
+
+# launched_by STEPS RESULTS JOBS...: every mesh and run of RESULTS was written by a step (srun) of one of
+# JOBS, each by a step of its own, and nothing else was launched.
+launched_by() {
+  local steps=$1 dir=$2; shift 2
+  local expected recorded
+  expected=$(cd "$dir" && find . -name 'mesh-s*.h5' -o -name '*-s[0-9]*.h5' ! -name '*.frag.h5' ! -name 'frag-*' -o -name pulse.h5 |
+    sed 's|^\./||' | sort)
+  recorded=$(awk '{ print $4 }' "$steps" | sed "s|^$results/||" | sort)
+  [[ $recorded == "$expected" ]] || fail "launched: $(echo $recorded); written: $(echo $expected)"
+  awk -v jobs=" $* " '$2 !~ /^[0-9]+$/ || index(jobs, " " $1 " ") == 0 { print "not a step of jobs" jobs ": " $0; bad = 1 }
+    END { exit bad }' "$steps" || fail "$steps: runs outside the jobs"
+  [[ -z $(awk '{ print $1 "." $2 }' "$steps" | sort | uniq -d) ]] || fail "$steps: a step ran twice"
+}
+salloc_job=$(awk '{ print $1; exit }' "$work/steps-salloc.txt")
+[[ $(job_field "$salloc_job" JobName) == salloc-explosion ]] || fail "job $salloc_job is not the allocation"
+launched_by "$work/steps-salloc.txt" "$work/salloc" "$salloc_job"
+launched_by "$work/steps-array.txt" "$work/array" "$(job_field "${array}_1" JobId)" "$(job_field "${array}_2" JobId)"
+say "srun ran $(wc -l < "$work/steps-salloc.txt") steps in allocation $salloc_job and $(wc -l < "$work/steps-array.txt") in array $array"
+
+# --- 3: the time limit -------------------------------------------------------------------------------
+if ! "$bin/dem-run" --help 2>&1 | grep -q -- --checkpoint-every; then
+  say "SKIPPED the time-limit case: dem-run has no --checkpoint-every"
+  exit 0
+fi
+tl=$work/timelimit
+mkdir -p "$tl/local" "$tl/cluster"
+"$bin/mesh-gen" voronoi --shape disc --diameter 0.4 --cells "$cells" --seed 1 -q -o "$tl/disc.h5"
+# About 75 s on one core (Release, 20000 cells); the cells are finer than the scene's dt allows, hence dt = auto.
+# --checkpoint-every 0: a checkpoint only when a signal stops the run, so one that exists came from the signal.
+run=("$bin/dem-run" --scene "$src/data/scenes/explosion.ini" "$tl/disc.h5" --integrator.dt auto
+     --stop.t_max 1.35e-3 --checkpoint-every 0 -q)
+say "time limit: the reference run locally, beside the job"
+("${run[@]}" -o "$tl/local/run.h5") 2> "$tl/local/stderr.txt" &
+ref_pid=$!
+# slurmctld looks at time limits every 30 s: the signal comes at 20-50 s before the end of the minute,
+# 10-40 s into the job, long before the run ends.
+job=$(sbatch --parsable --time=1 --signal=TERM@20 --chdir="$tl/cluster" -o "$tl/cluster/job.out" \
+  "$here/timelimit.sbatch" "$tl/cluster/parts.txt" "$tl/cluster/run.h5" "${run[@]}" -o "$tl/cluster/run.h5")
+say "time limit: job $job, --time=1 --signal=TERM@20"
+deadline=$((SECONDS + 120))
+until [[ $(job_field "$job" Restarts) == 1 ]]; do
+  state=$(job_field "$job" JobState)
+  [[ $state =~ ^(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|BOOT_FAIL|DEADLINE|PREEMPTED)$ ]] &&
+    { cat "$tl/cluster/job.out"; fail "job $job ended ($state) without being requeued: not stopped by the time limit's signal"; }
+  ((SECONDS < deadline)) || fail "job $job not requeued after 120 s"
+  sleep 1
+done
+say "time limit: job $job requeued ($(job_field "$job" JobState), $(job_field "$job" Reason))"
+[[ -f $tl/cluster/run.h5.ckpt ]] || fail "requeued without a checkpoint"
+[[ ! -e $tl/cluster/run.h5 ]] || fail "run.h5 exists before the run finished"
+# The continuation is to finish in one part (one resumption to check): a longer limit for the requeued job.
+scontrol update JobId="$job" TimeLimit=5
+wait_gone "$job" 180
+[[ $(job_field "$job" JobState) == COMPLETED && $(job_field "$job" ExitCode) == 0:0 ]] ||
+  { cat "$tl/cluster/job.out"; fail "job $job: $(job_field "$job" JobState), exit $(job_field "$job" ExitCode)"; }
+wait "$ref_pid" || { cat "$tl/local/stderr.txt"; fail "the local reference run failed"; }
+ref_pid=
+
+cat "$tl/cluster/parts.txt"
+mapfile -t parts < "$tl/cluster/parts.txt"
+[[ ${#parts[@]} -eq 4 ]] || fail "parts.txt: ${#parts[@]} lines, expected two parts of two lines"
+[[ ${parts[0]} == *"restart=0 "*"checkpoint=no output=no" ]] || fail "first part: ${parts[0]}"
+[[ ${parts[1]} =~ rc=([0-9]+)\ after=([0-9.]+)\ stopped=\'stopped\ by\ SIGTERM\ after\ step\ ([0-9]+)\'\ checkpoint=yes ]] ||
+  fail "the first part was not stopped by SIGTERM with a checkpoint: ${parts[1]}"
+rc=${BASH_REMATCH[1]} after=${BASH_REMATCH[2]} step=${BASH_REMATCH[3]}
+[[ $rc -ne 0 ]] || fail "the stopped part exited 0"
+# Before the limit itself (60 s): the --signal stopped it, not the limit's kill; and after some steps.
+awk -v t="$after" 'BEGIN { exit !(t < 58) }' || fail "stopped after $after s: by the time limit, not its signal"
+((step > 0)) || fail "stopped at step 0: nothing to continue"
+[[ ${parts[2]} == *"restart=1 "*"checkpoint=yes output=no" ]] || fail "second part: ${parts[2]}"
+[[ ${parts[3]} == "end rc=0 "*"checkpoint=no" ]] || fail "second part's end: ${parts[3]}"
+[[ -f $tl/cluster/run.h5 && ! -e $tl/cluster/run.h5.ckpt ]] || fail "after the run: run.h5 missing or the checkpoint left"
+h5diff --exclude-path /provenance "$tl/local/run.h5" "$tl/cluster/run.h5" ||
+  fail "the run stopped and continued differs from the uninterrupted one"
+segments=$(h5dump -y -w 0 -d /provenance/segments/first_step "$tl/cluster/run.h5" | awk '/DATA \{/ { f = 1; next } f && /\}/ { f = 0 } f' | tr -d ' \n')
+[[ $segments == "0,$step" ]] || fail "/provenance/segments/first_step is '$segments', expected 0,$step"
+say "time limit: signalled $after s into the 1-minute job, at step $step; requeued, continued, equal to the local run"
+say "ok"
