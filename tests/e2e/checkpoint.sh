@@ -22,6 +22,18 @@ wait_for() {
   return 1
 }
 
+# Waits until the run `pid` writing `output` is in its time loop: its temporary output exists (a stop signal
+# before that ends the run at once, with nothing to save), and a moment more.
+in_time_loop() {
+  local pid=$1 output=$2
+  for _ in $(seq 600); do
+    compgen -G ".$output.tmp-*" >/dev/null && { sleep 0.3; return 0; }
+    kill -0 "$pid" 2>/dev/null || fail "the run ended before its time loop"
+    sleep 0.1
+  done
+  fail "the run did not reach its time loop in 60 s"
+}
+
 # Runs "$@ -o part.h5 --checkpoint-every K" (K random) until its first checkpoint exists, waits a random
 # while longer and kills it with SIGKILL: the run is left at a random step past a random checkpoint.
 kill_at_random_step() {
@@ -91,7 +103,7 @@ case $case in
       rm -f part.h5.ckpt
       "${run[@]}" -o part.h5 --checkpoint-every 1000000 2>err.txt &
       pid=$!
-      sleep 0.3
+      in_time_loop "$pid" part.h5
       kill -"$sig" "$pid"
       set +e; wait "$pid"; rc=$?; set -e
       cat err.txt
@@ -105,9 +117,9 @@ case $case in
     grep -q "continuing from part.h5.ckpt at step" err.txt || fail "the same command line did not continue the run"
     h5diff --exclude-path /provenance full.h5 part.h5 || fail "the continued run differs"
     # Standard output has no checkpoint: SIGTERM still ends the run by the signal, leaving nothing.
-    "${run[@]}" -o - > piped.h5 2>err.txt &
+    "${run[@]}" --stop.t_max 0.05 -o - > piped.h5 2>err.txt &
     pid=$!
-    sleep 0.3
+    sleep 1
     kill -TERM "$pid"
     set +e; wait "$pid"; rc=$?; set -e
     [[ $rc -eq 143 ]] || fail "-o -: exit $rc after SIGTERM"
