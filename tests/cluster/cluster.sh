@@ -6,9 +6,10 @@
 #     time), the same runs (h5diff without /provenance).
 #  2. scripts/slurm/experiment.sbatch in miniature: the job array over seeds, then the analysis after it
 #     (--dependency=afterok): the same results again.
-#  3. The time limit: a dem-run of about 75 s as a job of --time=1 --signal=TERM@20; the signal stops it with a
-#     checkpoint, the job requeues itself (timelimit.sbatch), the next part continues the run, and the run
-#     equals an uninterrupted local one; its provenance lists the one continuation.
+#  3. The time limit: experiment.sbatch's task for one seed of a larger disc (a dem-run of about 75 s) as a job
+#     of --time=1 --signal=TERM@20; the signal stops the run with a checkpoint, the task requeues itself, the
+#     next part continues the run, and the run equals an uninterrupted local one; its provenance lists the one
+#     continuation.
 # Exit 77 (skip) when the cluster cannot run here.
 # Usage: cluster.sh SOURCE_DIR BUILD_DIR WORK_DIR [CELLS]   (CELLS: the time-limit run's disc, default 20000)
 set -euo pipefail
@@ -34,7 +35,7 @@ ref_pid=
 cleanup() {
   local status=$?
   set +e
-  [[ -n $ref_pid ]] && kill "$ref_pid" 2>/dev/null && wait "$ref_pid" 2>/dev/null
+  [[ -n $ref_pid ]] && kill -- -"$ref_pid" 2>/dev/null && wait "$ref_pid" 2>/dev/null
   # The daemons' logs, for a failure (the cluster's folder is removed).
   [[ $status -eq 0 || $status -eq 77 ]] || cp -r "$cluster/log" "$work/cluster-logs" 2>/dev/null
   bash "$here/stop_cluster.sh" "$cluster"
@@ -144,61 +145,67 @@ launched_by "$work/steps-array.txt" "$work/array" "$(job_field "${array}_1" JobI
 say "srun ran $(wc -l < "$work/steps-salloc.txt") steps in allocation $salloc_job and $(wc -l < "$work/steps-array.txt") in array $array"
 
 # --- 3: the time limit -------------------------------------------------------------------------------
+# experiment.sbatch's array task for seed 2 of a larger explosion: one run of about 75 s on one core (Release,
+# 20000 cells; cells this fine need dt = auto), in a job of --time=1 --signal=TERM@20. slurmctld looks at
+# time limits every 30 s: the signal comes 20-50 s before the end of the minute, 10-40 s into the job, long
+# before the run ends. The run writes its checkpoint and ends, the task requeues itself, its next part
+# continues the run. --checkpoint-every 0: a checkpoint only when a signal stops the run, so the one that
+# exists came from the signal. Seed 2 of EX_SEEDS='1 2' with the scan on seed 1 only: no pulse, no scan runs.
 if ! "$bin/dem-run" --help 2>&1 | grep -q -- --checkpoint-every; then
   say "SKIPPED the time-limit case: dem-run has no --checkpoint-every"
   exit 0
 fi
 tl=$work/timelimit
-mkdir -p "$tl/local" "$tl/cluster"
-"$bin/mesh-gen" voronoi --shape disc --diameter 0.4 --cells "$cells" --seed 1 -q -o "$tl/disc.h5"
-# About 75 s on one core (Release, 20000 cells); the cells are finer than the scene's dt allows, hence dt = auto.
-# --checkpoint-every 0: a checkpoint only when a signal stops the run, so one that exists came from the signal.
-run=("$bin/dem-run" --scene "$src/data/scenes/explosion.ini" "$tl/disc.h5" --integrator.dt auto
-     --stop.t_max 1.35e-3 --checkpoint-every 0 -q)
+mkdir -p "$tl"
+big=(BUILD="$build" EX_SEEDS="1 2" EX_SCAN_SEEDS=1 EX_PAIRS=3-4 EX_CELLS="$cells"
+     EX_RUN_OPTIONS="--integrator.dt auto --stop.t_max 1.35e-3 --checkpoint-every 0")
 say "time limit: the reference run locally, beside the job"
-("${run[@]}" -o "$tl/local/run.h5") 2> "$tl/local/stderr.txt" &
+# In a session of its own: the trap ends make and its dem-run together.
+setsid make -C "$src" -f Makefile.analysis NO_BUILD=1 JOBS=1 RESULTS="$tl/local" "${big[@]}" \
+  "$tl/local/explosion/runs/3-4-s2.frag.h5" > "$tl/local.log" 2>&1 &
 ref_pid=$!
-# slurmctld looks at time limits every 30 s: the signal comes at 20-50 s before the end of the minute,
-# 10-40 s into the job, long before the run ends.
-job=$(sbatch --parsable --time=1 --signal=TERM@20 --chdir="$tl/cluster" -o "$tl/cluster/job.out" \
-  "$here/timelimit.sbatch" "$tl/cluster/parts.txt" "$tl/cluster/run.h5" "${run[@]}" -o "$tl/cluster/run.h5")
-say "time limit: job $job, --time=1 --signal=TERM@20"
+job=$(cd "$src" && sbatch --parsable --array=2 --time=1 --signal=TERM@20 -o "$tl/job-%A_%a.out" \
+  scripts/slurm/experiment.sbatch RESULTS="$tl/cluster" "${big[@]}")
+out=$tl/job-${job}_2.out
+run=$tl/cluster/explosion/runs/3-4-s2.h5
+say "time limit: experiment.sbatch --array=2 --time=1 --signal=TERM@20: job $job"
 deadline=$((SECONDS + 120))
-until [[ $(job_field "$job" Restarts) == 1 ]]; do
-  state=$(job_field "$job" JobState)
+until [[ $(job_field "${job}_2" Restarts) == 1 ]]; do
+  state=$(job_field "${job}_2" JobState)
   [[ $state =~ ^(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|BOOT_FAIL|DEADLINE|PREEMPTED)$ ]] &&
-    { cat "$tl/cluster/job.out"; fail "job $job ended ($state) without being requeued: not stopped by the time limit's signal"; }
-  ((SECONDS < deadline)) || fail "job $job not requeued after 120 s"
+    { cat "$out"; fail "job $job ended ($state) without being requeued: not stopped by the time limit's signal"; }
+  ((SECONDS < deadline)) || { cat "$out"; fail "job $job not requeued after 120 s"; }
   sleep 1
 done
-say "time limit: job $job requeued ($(job_field "$job" JobState), $(job_field "$job" Reason))"
-[[ -f $tl/cluster/run.h5.ckpt ]] || fail "requeued without a checkpoint"
-[[ ! -e $tl/cluster/run.h5 ]] || fail "run.h5 exists before the run finished"
+say "time limit: job $job requeued ($(job_field "${job}_2" JobState), $(job_field "${job}_2" Reason))"
+[[ -f $run.ckpt ]] || fail "requeued without a checkpoint"
+[[ ! -e $run ]] || fail "the run exists before it finished"
 # The continuation is to finish in one part (one resumption to check): a longer limit for the requeued job.
-scontrol update JobId="$job" TimeLimit=5
+scontrol update JobId="${job}_2" TimeLimit=5
 wait_gone "$job" 180
-[[ $(job_field "$job" JobState) == COMPLETED && $(job_field "$job" ExitCode) == 0:0 ]] ||
-  { cat "$tl/cluster/job.out"; fail "job $job: $(job_field "$job" JobState), exit $(job_field "$job" ExitCode)"; }
-wait "$ref_pid" || { cat "$tl/local/stderr.txt"; fail "the local reference run failed"; }
+[[ $(job_field "${job}_2" JobState) == COMPLETED && $(job_field "${job}_2" ExitCode) == 0:0 ]] ||
+  { cat "$out"; fail "job $job: $(job_field "${job}_2" JobState), exit $(job_field "${job}_2" ExitCode)"; }
+wait "$ref_pid" || { tail -n 20 "$tl/local.log"; fail "the local reference run failed"; }
 ref_pid=
 
-cat "$tl/cluster/parts.txt"
-mapfile -t parts < "$tl/cluster/parts.txt"
-[[ ${#parts[@]} -eq 4 ]] || fail "parts.txt: ${#parts[@]} lines, expected two parts of two lines"
-[[ ${parts[0]} == *"restart=0 "*"checkpoint=no output=no" ]] || fail "first part: ${parts[0]}"
-[[ ${parts[1]} =~ rc=([0-9]+)\ after=([0-9.]+)\ stopped=\'stopped\ by\ SIGTERM\ after\ step\ ([0-9]+)\'\ checkpoint=yes ]] ||
-  fail "the first part was not stopped by SIGTERM with a checkpoint: ${parts[1]}"
-rc=${BASH_REMATCH[1]} after=${BASH_REMATCH[2]} step=${BASH_REMATCH[3]}
-[[ $rc -ne 0 ]] || fail "the stopped part exited 0"
+grep '^experiment.sbatch:\|stopped by' "$out"
+[[ $(grep -c '^experiment.sbatch: job .* part ' "$out") -eq 2 ]] || fail "$out: not two parts"
+stopped=$(grep -o 'stopped by SIGTERM after step [0-9]*' "$out") || fail "$out: no run stopped by SIGTERM"
+step=${stopped##* }
+after=$(grep -o 'stopped by a signal after [0-9]* s' "$out" | awk '{ print $6 }')
+[[ -n $after ]] || fail "$out: the task did not requeue itself"
 # Before the limit itself (60 s): the --signal stopped it, not the limit's kill; and after some steps.
-awk -v t="$after" 'BEGIN { exit !(t < 58) }' || fail "stopped after $after s: by the time limit, not its signal"
+((after < 58)) || fail "stopped after $after s: by the time limit, not by its signal"
 ((step > 0)) || fail "stopped at step 0: nothing to continue"
-[[ ${parts[2]} == *"restart=1 "*"checkpoint=yes output=no" ]] || fail "second part: ${parts[2]}"
-[[ ${parts[3]} == "end rc=0 "*"checkpoint=no" ]] || fail "second part's end: ${parts[3]}"
-[[ -f $tl/cluster/run.h5 && ! -e $tl/cluster/run.h5.ckpt ]] || fail "after the run: run.h5 missing or the checkpoint left"
-h5diff --exclude-path /provenance "$tl/local/run.h5" "$tl/cluster/run.h5" ||
-  fail "the run stopped and continued differs from the uninterrupted one"
-segments=$(h5dump -y -w 0 -d /provenance/segments/first_step "$tl/cluster/run.h5" | awk '/DATA \{/ { f = 1; next } f && /\}/ { f = 0 } f' | tr -d ' \n')
+[[ -f $run && ! -e $run.ckpt ]] || fail "after the run: $run missing or its checkpoint left"
+for f in mesh-s2.h5 runs/3-4-s2.h5; do
+  h5diff --exclude-path /provenance "$tl/local/explosion/$f" "$tl/cluster/explosion/$f" ||
+    fail "$f: stopped and continued, it differs from the uninterrupted run"
+done
+# The fragments' /parameters name their input's path, which differs here.
+h5diff --exclude-path /provenance --exclude-path /parameters "$tl/local/explosion/runs/3-4-s2.frag.h5" \
+  "$tl/cluster/explosion/runs/3-4-s2.frag.h5" || fail "runs/3-4-s2.frag.h5: the fragments differ"
+segments=$(h5dump -y -w 0 -d /provenance/segments/first_step "$run" | awk '/DATA \{/ { f = 1; next } f && /\}/ { f = 0 } f' | tr -d ' \n')
 [[ $segments == "0,$step" ]] || fail "/provenance/segments/first_step is '$segments', expected 0,$step"
 say "time limit: signalled $after s into the 1-minute job, at step $step; requeued, continued, equal to the local run"
 say "ok"

@@ -87,10 +87,14 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 # The node's line below is the truth (not what slurmd detects): it never drains for a topology mismatch.
 SlurmdParameters=config_overrides
-# First in, first out, started on submission (no backfill pass to wait for).
+# First in, first out, started on submission (no backfill pass to wait for); the full queue every 2 s
+# (default 60 s): what starts a requeued job once its begin time (cred_expire above) has passed.
 SchedulerType=sched/builtin
+SchedulerParameters=sched_interval=2
 ReturnToService=2
-# Time limits: no grace beyond the limit, SIGKILL 5 s after the SIGTERM of the limit.
+# Time limits: no grace beyond the limit, SIGKILL 5 s after the SIGTERM of the limit. slurmctld looks at
+# time limits every 30 s (compiled in, not a setting): --signal=SIG@N arrives N to N + 30 s before the limit,
+# the limit's own SIGTERM up to 30 s after it.
 OverTimeLimit=0
 KillWait=5
 MessageTimeout=10

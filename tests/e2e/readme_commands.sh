@@ -3,7 +3,8 @@
 # (later commands use the files earlier ones wrote), with the tools of this build on the PATH, and fails
 # on the first command that exits non-zero. Make targets run as their miniature (MINI=1) with the built
 # tools; the test suite and the benchmarks are not run from here (the suite is what runs this; timings
-# are not tests): for those only the target or script is checked to exist.
+# are not tests), nor SLURM commands (sbatch, srun, salloc …: no cluster here): for those only the target
+# or script is checked to exist.
 # Usage: readme_commands.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail
 src=$1 build=$2 work=$3
@@ -26,6 +27,18 @@ for command in "${commands[@]}"; do
       test|sanitize-test|bench) checked=$((checked + 1)); echo "checked (not run here): $command"; continue ;;
     esac
     command="make -f Makefile.analysis $target MINI=1 NO_BUILD=1 BUILD=$build RESULTS=$work/results JOBS=2"
+  elif [[ $command =~ ^([A-Za-z_]+=\$\()?(sbatch|srun|salloc|squeue|scontrol|scancel|sinfo)\  ]]; then
+    # SLURM commands need a cluster: not run here; the scripts and make targets they name must exist.
+    read -ra words <<<"$command"
+    for word in "${words[@]}"; do
+      word=${word%)}
+      [[ $word == scripts/* ]] || continue
+      [[ -f $word ]] && bash -n "$word" || fail "README names a script that does not exist or parse: $word"
+    done
+    if [[ $command =~ make\ -f\ Makefile\.analysis\ ([a-z-]+) ]]; then
+      grep -qx -- "${BASH_REMATCH[1]}" <<<"$make_targets" || fail "README names a make target that does not exist: ${BASH_REMATCH[1]}"
+    fi
+    checked=$((checked + 1)); echo "checked (needs SLURM, not run here): $command"; continue
   elif [[ $command =~ ^bash\ (bench/[a-z_-]+\.sh) ]]; then
     script=${BASH_REMATCH[1]}
     bash -n "$script" || fail "README names a benchmark script that does not parse: $script"
