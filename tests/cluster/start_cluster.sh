@@ -16,7 +16,7 @@ skip() {
   exit 77
 }
 [[ $(id -u) -eq 0 ]] || skip "the private SLURM cluster runs its daemons as root (uid $(id -u))"
-for b in munged mungekey slurmctld slurmd sinfo srun salloc sbatch scontrol squeue; do
+for b in munged mungekey munge unmunge slurmctld slurmd sinfo srun salloc sbatch scontrol squeue ss free; do
   command -v "$b" >/dev/null || skip "$b not found (apt-get install slurm-wlm munge)"
 done
 mkdir -p "$dir"

@@ -8,7 +8,7 @@ set -uo pipefail
 dir=$1 keep=${2:-}
 [[ -d $dir ]] || exit 0
 
-# Jobs first, so that their steps end with them (scontrol is quick to fail if slurmctld is already gone).
+# Jobs first, so that their steps end with them (bounded: slurmctld may be gone already).
 if [[ -f $dir/slurm.conf && -f $dir/slurmctld.pid ]]; then
   SLURM_CONF=$dir/slurm.conf timeout 10 scancel --full --quiet --user=root >/dev/null 2>&1 || true
 fi
@@ -21,15 +21,23 @@ ours() {
   tr '\0' ' ' < "/proc/$pid/cmdline" | grep -qF -- "$dir" || return 1
   echo "$pid"
 }
-for daemon in slurmd slurmctld munged; do
-  pid=$(ours "$dir/$daemon.pid") || continue
-  kill -TERM "$pid" 2>/dev/null || continue
-  for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-  if kill -0 "$pid" 2>/dev/null; then
-    echo "stop_cluster: $daemon ($pid) ignores SIGTERM for 10 s: SIGKILL" >&2
-    kill -KILL "$pid" 2>/dev/null || true
-  fi
-done
+# stop DAEMON...: SIGTERM to each, then wait for all (each takes 1-2 s to shut down).
+stop() {
+  local daemon pid pids=()
+  for daemon in "$@"; do
+    pid=$(ours "$dir/$daemon.pid") && kill -TERM "$pid" 2>/dev/null && pids+=("$daemon:$pid")
+  done
+  for entry in "${pids[@]}"; do
+    pid=${entry#*:}
+    for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    if kill -0 "$pid" 2>/dev/null; then
+      echo "stop_cluster: ${entry%%:*} ($pid) ignores SIGTERM for 10 s: SIGKILL" >&2
+      kill -KILL "$pid" 2>/dev/null
+    fi
+  done
+}
+stop slurmd slurmctld
+stop munged  # last: the SLURM daemons use it until they end
 # slurmstepd of steps that outlived their job (started by our slurmd: their command line has no DIR, but
 # their spool does): ended by the pids slurmd's spool lists.
 for sock in "$dir"/spool/*_*.*; do
