@@ -44,7 +44,6 @@ struct Checksum {
 // ---------------------------------------------------------------- StateWriter
 
 void StateWriter::save(const std::string& name, Type type, const void* data, std::size_t count) {
-  if (names_.empty()) checksum_ = Checksum{}.h;
   Checksum c{checksum_};
   c.add_entry(name, static_cast<int>(type), data, count, kTypeBytes[static_cast<int>(type)]);
   checksum_ = c.h;
@@ -65,7 +64,7 @@ void StateWriter::save(const std::string& name, Type type, const void* data, std
 
 void StateWriter::finish() {
   group_.write_strings(kEntries, names_);
-  group_.set_attr("checksum", static_cast<std::int64_t>(names_.empty() ? Checksum{}.h : checksum_));
+  group_.set_attr("checksum", static_cast<std::int64_t>(checksum_));
 }
 
 std::size_t StateWriter::stored(const std::string&, Type) { throw std::logic_error("StateWriter: not loading"); }
@@ -158,7 +157,6 @@ void Checkpoints::write(std::int64_t step, double time, const std::function<void
   visit(state);
   state.finish();
   out.commit(true);
-  last_step_ = step;
   last_time_ = std::chrono::steady_clock::now();
   ++written_;
   seconds_ += std::chrono::duration<double>(last_time_ - start).count();

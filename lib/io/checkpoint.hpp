@@ -38,7 +38,7 @@ class StateWriter final : public StateArchive {
   std::string where(const std::string& name) const override;
   Group group_;
   std::vector<std::string> names_;
-  std::uint64_t checksum_;
+  std::uint64_t checksum_ = 0xcbf29ce484222325ull;  // FNV-1a's offset basis: nothing saved yet
 };
 
 // Loading: every entry read at construction and checked against the checksum (InputError naming the group for
@@ -90,7 +90,6 @@ class Checkpoints {
   ToolRun run_;
   std::string key_;
   RunWriter* writer_;
-  std::int64_t last_step_ = 0;
   std::chrono::steady_clock::time_point last_time_;
   int written_ = 0;
   double seconds_ = 0;

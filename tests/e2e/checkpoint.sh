@@ -97,7 +97,7 @@ case $case in
     # SIGTERM (a batch job's time limit) and SIGINT: a checkpoint, a message naming it, death by the signal, no
     # temporary left; the same command line then continues to the uninterrupted run's output.
     "$mesh_gen" voronoi --shape disc --diameter 0.4 --cells 400 --seed 3 -q -o disc.h5
-    run=("$dem" --scene "$scenes/explosion.ini" disc.h5 --stop.t_max 4e-3 --stop.steps_without_breaking 0)
+    run=("$dem" --scene "$scenes/explosion.ini" disc.h5 --stop.t_max 2e-2 --stop.steps_without_breaking 0)
     "${run[@]}" -o full.h5 -q
     for sig in TERM INT; do
       rm -f part.h5.ckpt
