@@ -9,6 +9,7 @@
 #include "core/checkpoint_options.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "temp_dir.hpp"
 #include "dynamics/integrator.hpp"
 #include "io/checkpoint.hpp"
 #include "io/header.hpp"
@@ -16,14 +17,9 @@
 
 namespace fs = std::filesystem;
 using namespace frac;
+using frac::test::temp_dir;
 
 namespace {
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("fracture-test-ckpt-" + name + "-" + make_uuid().substr(0, 8));
-  fs::create_directories(dir);
-  return dir;
-}
 
 struct Record {
   std::int32_t index;

@@ -14,6 +14,7 @@
 #include "analysis/fragments.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "temp_dir.hpp"
 #include "core/rng.hpp"
 #include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
@@ -23,6 +24,7 @@
 
 namespace fs = std::filesystem;
 using namespace frac;
+using frac::test::temp_dir;
 using analysis::CellState;
 using analysis::Fragments;
 
@@ -130,12 +132,6 @@ bool same_partition(const std::vector<std::int64_t>& a, const std::vector<std::i
     if (ab[a[i]] != b[i] || ba[b[i]] != a[i]) return false;
   }
   return true;
-}
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("fracture-test-fragments-" + name + "-" + make_uuid().substr(0, 8));
-  fs::create_directories(dir);
-  return dir;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "temp_dir.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
@@ -17,14 +18,9 @@
 
 namespace fs = std::filesystem;
 using namespace frac;
+using frac::test::temp_dir;
 
 namespace {
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("fracture-test-io-" + name + "-" + make_uuid().substr(0, 8));
-  fs::create_directories(dir);
-  return dir;
-}
 
 mesh::CellMesh two_squares() {
   // Two unit squares side by side, sharing the side x = 1: one beam of length 1 and section 1.
