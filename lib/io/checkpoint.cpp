@@ -8,6 +8,7 @@
 #include "core/signals.hpp"
 #include "core/version.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checksum.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -18,19 +19,8 @@ constexpr const char* kTypeName[] = {"float64", "int64", "uint8"};
 constexpr std::size_t kTypeBytes[] = {8, 8, 1};
 constexpr const char* kEntries = "_entries";  // "type name" of every entry, in the order saved
 
-// FNV-1a over 8-byte words (the tail byte by byte): detects a damaged state, at memory speed.
-struct Checksum {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  void add(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    std::size_t k = 0;
-    for (; k + 8 <= bytes; k += 8) {
-      std::uint64_t w;
-      std::memcpy(&w, p + k, 8);
-      h = (h ^ w) * 0x100000001b3ull;
-    }
-    for (; k < bytes; ++k) h = (h ^ p[k]) * 0x100000001b3ull;
-  }
+// The checksum of one entry: its name, type, count and bytes.
+struct EntryChecksum : Checksum {
   void add_entry(const std::string& name, int type, const void* data, std::size_t count, std::size_t element) {
     add(name.data(), name.size());
     const std::uint64_t head[2] = {static_cast<std::uint64_t>(type), count};
@@ -44,7 +34,8 @@ struct Checksum {
 // ---------------------------------------------------------------- StateWriter
 
 void StateWriter::save(const std::string& name, Type type, const void* data, std::size_t count) {
-  Checksum c{checksum_};
+  EntryChecksum c;
+  c.h = checksum_;
   c.add_entry(name, static_cast<int>(type), data, count, kTypeBytes[static_cast<int>(type)]);
   checksum_ = c.h;
   names_.push_back(std::string(kTypeName[static_cast<int>(type)]) + " " + name);
@@ -78,7 +69,7 @@ std::string StateWriter::where(const std::string& name) const { return group_.wh
 StateReader::StateReader(const Group& group) : where_(group.where()) {
   if (!group.has(kEntries) || !group.has_attr("checksum"))
     throw InputError(where_ + ": not a checkpoint's state (no list of entries or no checksum)");
-  Checksum c;
+  EntryChecksum c;
   for (const std::string& line : group.read_strings(kEntries)) {
     const std::size_t space = line.find(' ');
     const std::string type_name = line.substr(0, space), name = space == std::string::npos ? "" : line.substr(space + 1);

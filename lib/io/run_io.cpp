@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checksum.hpp"
 #include "io/mesh_io.hpp"
 
 namespace frac::io {
@@ -13,6 +14,17 @@ const char* link_group(bool cells) { return cells ? "connectivity/beams" : "conn
 const char* breaks_name(bool cells) { return cells ? "beam_breaks" : "bond_breaks"; }
 std::vector<BreakEvent> read_breaks_at(const Group& root, bool cells);
 constexpr const char* kObservableNames = "observable_names";  // in a checkpoint's copy of the output
+
+std::uint64_t breaks_checksum(const std::vector<BreakEvent>& breaks) {
+  Checksum c;
+  for (const BreakEvent& e : breaks) {
+    c.add_value(e.step);
+    c.add_value(e.time);
+    c.add_value(e.index);
+    c.add_value(e.mode);
+  }
+  return c.h;
+}
 
 // Copies the object at `path` under `from` to the same path under `to` (a checkpoint's copy of the output).
 void copy_object(const Group& from, const std::string& path, Group& to) {
@@ -112,15 +124,20 @@ void RunWriter::finish() {
 
 void RunWriter::copy_progress(Group& to) {
   flush();
+  const auto copy = [&](const std::string& path, const SeriesWriter& series) {
+    copy_object(root_, path, to);
+    to.group(path).set_attr("checksum", static_cast<std::int64_t>(series.checksum()));
+  };
   for (const Trajectory& t : trajectory())
-    if (t.series) copy_object(root_, t.parent + "/" + t.name, to);
+    if (t.series) copy(t.parent + "/" + t.name, *t.series);
   std::vector<std::string> names;
   for (auto& [name, series] : observables_) {
-    copy_object(root_, "observables/" + name, to);
+    copy("observables/" + name, *series);
     names.push_back(name);
   }
   to.write_strings(kObservableNames, names);
   write_breaks(to);
+  to.group(std::string("observables/") + breaks_name(cells_)).set_attr("checksum", static_cast<std::int64_t>(breaks_checksum(breaks_)));
 }
 
 void RunWriter::replay(const Group& from) {
@@ -137,6 +154,9 @@ void RunWriter::replay(const Group& from) {
     observable(name, info.frame_dims, unit).replay(obs, name);
   }
   breaks_ = read_breaks_at(from, cells_);
+  const Group breaks = from.group(std::string("observables/") + breaks_name(cells_));
+  if (!breaks.has_attr("checksum") || breaks.attr_int("checksum") != static_cast<std::int64_t>(breaks_checksum(breaks_)))
+    throw InputError(breaks.where() + ": damaged (the events do not match their checksum)");
 }
 
 void RunWriter::write_breaks(Group& root) const {

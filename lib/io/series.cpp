@@ -89,6 +89,9 @@ void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, co
                        std::to_string(frame_size_));
   if (H5Tequal(mem_type, value_type_) <= 0)
     throw RuntimeError(group_.where("value") + ": frame of another type than the series'");
+  checksum_.add_value(step);
+  checksum_.add_value(time);
+  checksum_.add(frame, count * value_bytes_);
   if (rows_per_chunk_ == 1) {
     // A frame fills a chunk: written at once, from the caller's memory (no copy of a large frame).
     write_steps(&step, &time, 1);
@@ -219,6 +222,8 @@ std::vector<T> read_series_frame(const Group& parent, std::string_view name, lon
 
 void SeriesWriter::replay(const Group& parent, std::string_view name) {
   const SeriesInfo info = read_series_info(parent, name);
+  const Group copy = parent.group(name);
+  if (!copy.has_attr("checksum")) throw InputError(copy.where() + ": no checksum (not a checkpoint's copy)");
   if (info.frame_dims != frame_dims_)
     throw InputError(parent.group(name).where() + ": frames of another shape than this run's");
   const std::size_t frames = info.step.size();
@@ -234,6 +239,8 @@ void SeriesWriter::replay(const Group& parent, std::string_view name) {
       case SeriesType::uint8: append_rows_of(read_series_rows<std::uint8_t>(parent, name, info, first, rows), H5T_NATIVE_UINT8); break;
     }
   }
+  if (static_cast<std::int64_t>(checksum_.h) != copy.attr_int("checksum"))
+    throw InputError(copy.where() + ": damaged (its frames do not match their checksum)");
 }
 
 template std::vector<double> read_series_frame<double>(const Group&, std::string_view, long long);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "io/checksum.hpp"
 #include "io/hdf5.hpp"
 
 namespace frac::io {
@@ -30,9 +31,12 @@ class SeriesWriter {
   // Writes the buffered frames to the file.
   void flush();
   // Appends every frame of the series <parent>/<name> (a checkpoint's copy of this series): InputError if its
-  // frames have another shape.
+  // frames have another shape, or if they do not match the checksum its group carries (attribute "checksum").
   void replay(const Group& parent, std::string_view name);
   std::size_t frames() const { return frames_; }  // appended, written or not
+  // A running checksum (io/checksum) of every frame appended (step, time, values): a checkpoint keeps it with its
+  // copy of the series, and replay() checks the copy against it.
+  std::uint64_t checksum() const { return checksum_.h; }
 
  private:
   void append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame, std::size_t count);
@@ -49,6 +53,7 @@ class SeriesWriter {
   hid_t value_type_ = -1;  // memory type of the values (the native type of the series' file type)
   std::size_t value_bytes_ = 0;
   bool compressed_ = false;  // value chunks are encoded here and written whole
+  Checksum checksum_;
   std::size_t frames_ = 0;   // appended
   std::size_t written_ = 0;  // in the file
   std::size_t rows_per_chunk_ = 1;

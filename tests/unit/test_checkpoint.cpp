@@ -14,6 +14,8 @@
 #include "io/checkpoint.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
+#include "io/run_io.hpp"
+#include "mesh/node_mesh.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;
@@ -240,5 +242,74 @@ TEST(Checkpoint, IntegratorContinuesBitForBit) {
       EXPECT_EQ(second->q()[i], whole->q()[i]) << dynamics::name(kind);
       EXPECT_EQ(second->v()[i], whole->v()[i]) << dynamics::name(kind);
     }
+  }
+}
+
+// The output so far, copied into a checkpoint and replayed into a new run file: the frames, observables and break
+// events come back as written; a value damaged in the copy is refused by the series' checksum.
+TEST(Checkpoint, OutputSoFarReplaysAndDamageIsRefused) {
+  const auto dir = temp_dir("replay");
+  mesh::NodeMesh m;
+  m.position = {mesh::Vec2(0, 0), mesh::Vec2(1, 0)};
+  m.bond = {{0, 1}};
+  m.bond_length = {1.0};
+  m.intact = {1};
+  m.nx = 2, m.ny = 1, m.spacing = 1.0;
+  const std::vector<double> mass{1.0, 1.0};
+  const auto copy_path = (dir / "copy.h5").string();
+  {
+    io::OutputFile out((dir / "run.h5").string());
+    io::RunWriter w(out.root(), m, mass);
+    io::BodyFrame f;
+    f.position = {0, 0, 1, 0};
+    f.velocity = {0, 0, 0, 0};
+    f.intact = {1};
+    f.strain = {0.0};
+    for (int k = 0; k < 5; ++k) {
+      f.step = k;
+      f.time = 0.1 * k;
+      f.position[2] = 1 + 0.01 * k;
+      w.write_frame(f);
+      w.observe("energy", k, 0.1 * k, 1.5 * k, "J");
+    }
+    w.record_break({3, 0.3, 0, 1});
+    io::OutputFile copy(copy_path);
+    io::Group run = copy.root().create_group("run");
+    w.copy_progress(run);
+    copy.commit();
+  }
+  {
+    io::OutputFile out((dir / "continued.h5").string());
+    io::RunWriter w(out.root(), m, mass);
+    const io::Group copy = io::open_input(copy_path);
+    w.replay(copy.group("run"));
+    EXPECT_EQ(w.frames(), 5u);
+    w.finish();
+    out.commit();
+  }
+  const io::Group continued = io::open_input((dir / "continued.h5").string());
+  EXPECT_EQ(io::read_frame(continued, -1).position[2], 1.04);
+  EXPECT_EQ(io::read_breaks(continued).size(), 1u);
+  EXPECT_EQ(continued.group("observables/energy").read<double>("value").back(), 6.0);
+
+  // One value of the copy changed: refused, naming the series.
+  {
+    io::Hid file(H5Fopen(copy_path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+    io::Hid d(H5Dopen2(file.get(), "/run/observables/energy/value", H5P_DEFAULT));
+    io::Hid space(H5Dget_space(d.get()));
+    const hsize_t start = 2, count = 1;
+    H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, &start, nullptr, &count, nullptr);
+    io::Hid mem(H5Screate_simple(1, &count, nullptr));
+    const double damaged = 3.25;
+    ASSERT_GE(H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, mem.get(), space.get(), H5P_DEFAULT, &damaged), 0);
+  }
+  io::OutputFile out((dir / "refused.h5").string());
+  io::RunWriter w(out.root(), m, mass);
+  const io::Group copy = io::open_input(copy_path);
+  try {
+    w.replay(copy.group("run"));
+    FAIL() << "a damaged copy was replayed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/run/observables/energy: damaged"), std::string::npos) << e.what();
   }
 }
