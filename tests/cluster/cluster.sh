@@ -41,7 +41,9 @@ cleanup() {
   bash "$here/stop_cluster.sh" "$cluster"
   local left
   left=$(pgrep -af -- "$cluster")
-  left+=$(comm -13 <(echo "$steps_before") <(pgrep -x slurmstepd | sort) | xargs -r -n1 ps -o pid=,args= -p)
+  # (A step daemon already dead, a zombie its killed parent left to init, is not a process left running.)
+  left+=$(comm -13 <(echo "$steps_before") <(pgrep -x slurmstepd | sort) | xargs -r -n1 ps -o pid=,stat=,args= -p |
+          awk '$2 !~ /^Z/')
   if [[ -n $left ]]; then
     echo "FAIL: processes of the cluster left behind: $left" >&2
     status=1
@@ -181,8 +183,8 @@ say "time limit: job $job requeued ($(job_field "${job}_2" JobState), $(job_fiel
 [[ -f $run.ckpt ]] || fail "requeued without a checkpoint"
 [[ ! -e $run ]] || fail "the run exists before it finished"
 # The continuation is to finish in one part (one resumption to check): a longer limit for the requeued job.
-scontrol update JobId="${job}_2" TimeLimit=5
-wait_gone "$job" 180
+scontrol update JobId="${job}_2" TimeLimit=15
+wait_gone "$job" 600  # (a loaded machine: the continuation alone takes 1-2 min on an idle core)
 [[ $(job_field "${job}_2" JobState) == COMPLETED && $(job_field "${job}_2" ExitCode) == 0:0 ]] ||
   { cat "$out"; fail "job $job: $(job_field "${job}_2" JobState), exit $(job_field "${job}_2" ExitCode)"; }
 wait "$ref_pid" || { tail -n 20 "$tl/local.log"; fail "the local reference run failed"; }
