@@ -9,7 +9,7 @@
 #include "core/checkpoint_options.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "temp_dir.hpp"
+#include "test_support.hpp"
 #include "dynamics/integrator.hpp"
 #include "io/checkpoint.hpp"
 #include "io/header.hpp"
@@ -249,12 +249,7 @@ TEST(Checkpoint, IntegratorContinuesBitForBit) {
 // events come back as written; a value damaged in the copy is refused by the series' checksum.
 TEST(Checkpoint, OutputSoFarReplaysAndDamageIsRefused) {
   const auto dir = temp_dir("replay");
-  mesh::NodeMesh m;
-  m.position = {mesh::Vec2(0, 0), mesh::Vec2(1, 0)};
-  m.bond = {{0, 1}};
-  m.bond_length = {1.0};
-  m.intact = {1};
-  m.nx = 2, m.ny = 1, m.spacing = 1.0;
+  const mesh::NodeMesh m = test::two_node_mesh();
   const std::vector<double> mass{1.0, 1.0};
   const auto copy_path = (dir / "copy.h5").string();
   {

@@ -14,7 +14,7 @@
 #include "analysis/fragments.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "temp_dir.hpp"
+#include "test_support.hpp"
 #include "core/rng.hpp"
 #include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
@@ -660,12 +660,7 @@ TEST(FragmentsIo, RefusesRubberRuns) {
   {
     io::OutputFile out(path);
     io::write_header(out.root(), "run", start_run("t", "t"), out.uuid());
-    mesh::NodeMesh m;
-    m.position = {mesh::Vec2(0, 0), mesh::Vec2(1, 0)};
-    m.bond = {{0, 1}};
-    m.bond_length = {1.0};
-    m.intact = {1};
-    m.nx = 2, m.ny = 1, m.spacing = 1.0;
+    const mesh::NodeMesh m = test::two_node_mesh();
     std::vector<double> mass{1.0, 1.0};
     io::RunWriter w(out.root(), m, mass);
     w.finish();

@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "temp_dir.hpp"
+#include "test_support.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
