@@ -300,10 +300,8 @@ void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta,
 }
 
 void Beams::reserve_breaks() {
-  const std::size_t count = active_.size();
   const auto most = static_cast<std::size_t>(max_threads());
-  breaking_.reserve(most);
-  for (std::size_t t = 0; t < most; ++t) breaking_[t].reserve(count);  // (allocates only the first time)
+  breaking_.reserve(most);  // (each thread's list grows with the beams it finds breaking: few, mostly)
 }
 
 void Beams::find_breaks(std::span<const double> q, double t_eps, double t_theta) {

@@ -19,12 +19,20 @@ void ContactList::set_laws(std::size_t laws) {
   for (auto& a : block_power) a.resize(room() / kPowerBlock + 1);
 }
 
-void ContactList::move_entries(std::size_t from, std::size_t to, std::size_t count) {
-  if (from == to || count == 0) return;
-  // (Ascending copies: safe for to < from, overlapping or not. The laws' state and forces are set after the fill.)
-  for (auto* a : {&i, &j}) std::copy(a->begin() + from, a->begin() + from + count, a->begin() + to);
-  for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc})
-    std::copy(a->begin() + from, a->begin() + from + count, a->begin() + to);
+void ContactList::copy_entries(const ContactList& from, std::size_t count, std::size_t to) {
+  // (The search's fill: the geometry only. The laws' state and forces are set after it.)
+  const auto copy = [&](const auto& source, auto& target) {
+    std::copy(source.begin(), source.begin() + static_cast<std::ptrdiff_t>(count),
+              target.begin() + static_cast<std::ptrdiff_t>(to));
+  };
+  copy(from.i, i);
+  copy(from.j, j);
+  copy(from.rx, rx);
+  copy(from.ry, ry);
+  copy(from.nx, nx);
+  copy(from.ny, ny);
+  copy(from.area, area);
+  copy(from.inv_lc, inv_lc);
 }
 
 Range ContactList::mine() const {

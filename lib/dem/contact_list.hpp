@@ -35,8 +35,8 @@ struct ContactList {
   std::size_t room() const { return i.size(); }
   // Room for the powers of `laws` laws.
   void set_laws(std::size_t laws);
-  // Entries [from, from + count) copied to [to, to + count), to ≤ from (the search's fill).
-  void move_entries(std::size_t from, std::size_t to, std::size_t count);
+  // The geometry of `from`'s first `count` entries copied to entries [to, to + count) (the search's fill).
+  void copy_entries(const ContactList& from, std::size_t count, std::size_t to);
   // Diagnostics of the last search.
   std::int64_t candidate_pairs = 0;  // pairs whose bounding circles overlap
   std::int64_t enclosed = 0;         // overlaps without a contact line (one polygon inside another)

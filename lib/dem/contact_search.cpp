@@ -106,6 +106,7 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
 
 void ContactSearch::Fill::put(std::int32_t i, std::int32_t j, const geometry::ContactGeometry& geo, double inv_lc) {
   const std::size_t k = next++;
+  if (k == out->room()) out->reserve(2 * k + 64);  // (a list only this thread writes while it fills)
   enclosed += geo.kind == geometry::ContactGeometry::Kind::enclosed;
   multi_crossing += geo.distinct_crossings > 2;
   out->i[k] = i;
@@ -124,6 +125,7 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (out.touch.size() < threads * threads) out.touch.resize(threads * threads);
   own_contacts_.reserve(threads);
   room_.reserve(threads);
+  if (staged_.size() < threads) staged_.resize(threads);
   list_.reserve_threads(threads);
   candidates_.reserve(threads);
 }
@@ -150,14 +152,14 @@ void ContactSearch::visit_state(StateArchive& archive) {
 void ContactSearch::find(std::span<const double> q, ContactList& out) {
   reserve_threads(static_cast<std::size_t>(max_threads()), out);
   as_team(bodies_->n > kMinParallelItems, [&] {
-    find_start(q, out);
+    find_start(q);
     team_barrier();
     find_finish(q, out);
   });
   find_end(out);
 }
 
-void ContactSearch::find_start(std::span<const double> q, const ContactList& out) {
+void ContactSearch::find_start(std::span<const double> q) {
   const auto t = static_cast<std::size_t>(thread_index());
   if (t == 0) teams_ = static_cast<std::size_t>(thread_count());
   blocks_[t] = Block{};
@@ -165,8 +167,6 @@ void ContactSearch::find_start(std::span<const double> q, const ContactList& out
   if (bodies_->n < 2) return;
   world_vertices(q);
   list_.measure_moves(q);
-  // What the list has room for, read before anyone can change it (behind the barrier).
-  room_.mine() = out.room() >= list_.size();
 }
 
 void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
@@ -174,40 +174,36 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   Block& block = blocks_[t];
   out.block[t] = {0, 0};
   if (bodies_->n < 2) return;
-  const bool room = room_.mine();
-  const bool stale = list_.stale();
-  if (stale) list_.rebuild(q, world_polygons());
-  if (stale || !room) {
-    const std::size_t pairs = list_.size();
-    if (t == 0) out.reserve(pairs + pairs / 4);  // (at most one contact per pair)
-    team_barrier();
-  }
+  if (list_.stale()) list_.rebuild(q, world_polygons());
   const double* x = q.data();
   const double* y = x + bodies_->n;
   const double g = bodies_->length_scale;
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
-  // Each thread tests its part of the pairs in order and puts their contacts straight into the list, from the
-  // entry of its first pair on (room for them: at most one contact a pair).
+  // Each thread tests its part of the pairs in order: the first thread puts its contacts straight into the list,
+  // the others into lists of their own, copied in behind it once every thread has counted its contacts. Every
+  // list grows with its contacts (they are far fewer than the pairs), so the list's room follows the contacts.
   const Range part = static_range(list_.size(), t, nt);
-  Fill fill{&out, part.first, 0, 0};
+  Fill fill{t == 0 ? &out : &staged_[t], 0, 0, 0};
   std::int64_t candidates = 0;
   for (std::size_t p = part.first; p < part.last; ++p) candidates += test_pair(p, x, y, slack, fill);
   candidates_.mine() = candidates;
-  const std::size_t own = fill.next - part.first;
+  const std::size_t own = fill.next;
   if (nt > 1) {
     own_contacts_.mine() = own;
+    if (t == 0) room_.mine() = out.room();  // (no thread writes the list's arrays until after the barrier)
     team_barrier();
-    // The list in pair order, the same whatever the thread count: this thread's contacts move down after those
-    // of the threads before it. The entries below belong to the threads before: the second thread's move
-    // overwrites nothing another still reads; a later one waits for the moves before it.
-    std::size_t offset = 0;
-    for (std::size_t u = 0; u < t; ++u) offset += own_contacts_[u];
-    for (std::size_t u = 1; u < nt; ++u) {
-      if (u == t) out.move_entries(part.first, offset, own);
-      if (u + 1 < nt) team_barrier();
+    std::size_t offset = 0, total = 0;
+    for (std::size_t u = 0; u < nt; ++u) {
+      if (u < t) offset += own_contacts_[u];
+      total += own_contacts_[u];
     }
-    fill.next = offset + own;
+    if (total > room_[0]) {  // (the same verdict on every thread: one barrier or none)
+      if (t == 0) out.reserve(total + total / 4);
+      team_barrier();
+    }
+    if (t > 0) out.copy_entries(staged_[t], own, offset);
     block.offset = static_cast<std::int64_t>(offset);
+    fill.next = offset + own;
   }
   block.enclosed = fill.enclosed;
   block.multi_crossing = fill.multi_crossing;

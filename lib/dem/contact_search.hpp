@@ -4,8 +4,9 @@
 // geometry of each candidate pair (geometry/overlap), into a ContactList (dem/contact_list) whose forces the
 // contact laws (dem/contact_laws) then give.
 // On a team of threads (core/parallel.hpp), with the model's other loops: each thread tests its part of the
-// pairs in order and puts their contacts straight into the list; the threads' blocks are then joined in pair
-// order, so the list does not depend on the thread count.
+// pairs in order, the first thread putting its contacts straight into the list, the others into lists of their
+// own, copied in behind it in pair order, so the list does not depend on the thread count. Its room grows with
+// the contacts, not with the pairs (far fewer: memory).
 // The overlap of a pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches,
 // precomputed per cell edge, which leave out clip lines that cannot cut.
 #include <cstdint>
@@ -36,7 +37,7 @@ class ContactSearch {
   // list, the pair tests, the list filled: thread t its block, out.block[t]; no barrier at its end). After a
   // barrier, by one thread: find_end (the list's size, `blocks` and diagnostics).
   void reserve_threads(std::size_t threads, ContactList& out);
-  void find_start(std::span<const double> q, const ContactList& out);
+  void find_start(std::span<const double> q);
   void find_finish(std::span<const double> q, ContactList& out);
   void find_end(ContactList& out);
   // How often the neighbour list was rebuilt.
@@ -54,7 +55,7 @@ class ContactSearch {
   std::vector<double> inv_diameter_;  // 1/r of every cell, m^-1
   std::vector<double> edge_reach_;    // geometry::edge_reach of every edge (indexed like the vertices), m
   NeighbourList list_;
-  // Where a thread puts the contacts of the pairs it tests in order: the list's entries from `next` on.
+  // Where a thread puts the contacts of the pairs it tests in order: `out`'s entries from `next` on (`out` grows).
   struct Fill {
     ContactList* out;
     std::size_t next;
@@ -72,7 +73,8 @@ class ContactSearch {
   };
   std::vector<Block> blocks_;            // per thread
   TeamSlots<std::size_t> own_contacts_;  // per thread: the contacts of its part of the pairs
-  TeamSlots<char> room_;                 // per thread: whether the list had room for every pair (find_start)
+  TeamSlots<std::size_t> room_;          // the list's room after the first thread's fill (its slot only)
+  std::vector<ContactList> staged_;      // per thread but the first: the contacts of its part of the pairs
   // out.touch for this thread's block, [first, last), of a team of nt.
   void set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const;
 };

@@ -74,7 +74,7 @@ void Model::accelerations(double t, std::span<const double> q, std::span<const d
         for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
       });
     }
-    if (contact_list) search_.find_start(q, contacts_);  // (this thread's cells: their positions alone)
+    if (contact_list) search_.find_start(q);  // (this thread's cells: their positions alone)
     team_barrier();
     // (Every thread's part of the search started: the beams and the pairs read the other threads' cells.)
     if (beams_on) beams_.beam_pass(q);

@@ -64,6 +64,7 @@ void NeighbourList::build_grid(std::span<const double> q) {
   // sets the clip order, which only an irregular overlap's result depends on, at round-off.)
   std::swap(previous_, pairs_);
   pairs_.clear();
+  pairs_.reserve(previous_.size() + previous_.size() / 16);  // (the first thread's part, then the others' behind it)
   previous_first_.assign(n + 1, 0);
   for (const auto& pair : previous_) ++previous_first_[static_cast<std::size_t>(pair.i) + 1];
   for (std::size_t i = 0; i < n; ++i) previous_first_[i + 1] += previous_first_[i];
@@ -122,8 +123,8 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
   // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (in thread
   // order) into their own buffers, joined in thread order: the same list whatever the thread count.
   const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  auto& buf = thread_pairs_[t];
-  buf.clear();
+  auto& buf = t == 0 ? pairs_ : thread_pairs_[t];  // (build_grid cleared pairs_)
+  if (t > 0) buf.clear();
   const std::size_t gx = grid_x_, gy = grid_y_;
   const GridBody* body = grid_body_.data();
   auto pairs_of = [&](std::size_t i) {
@@ -165,7 +166,11 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
   }
   team_barrier();
   if (t == 0) {  // (one thread; the others wait at the barrier after)
-    for (std::size_t b = 0; b < nt; ++b) pairs_.insert(pairs_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
+    for (std::size_t b = 1; b < nt; ++b) {
+      pairs_.insert(pairs_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
+      std::vector<NeighbourPair>().swap(thread_pairs_[b]);
+    }
+    std::vector<NeighbourPair>().swap(previous_);  // (read by no thread now: memory for the steps until the next build)
   }
   team_barrier();
 }

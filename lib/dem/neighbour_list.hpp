@@ -63,9 +63,9 @@ class NeighbourList {
   double skin_ = 0;                       // m
   std::vector<double> ref_;               // q at the last build
   std::vector<NeighbourPair> pairs_;      // in order of i, then of the grid scan
-  std::vector<NeighbourPair> previous_;   // the list before the last rebuild
+  std::vector<NeighbourPair> previous_;   // the list before the rebuild under way (empty between rebuilds)
   std::vector<std::int32_t> previous_first_;  // its first pair of each cell i
-  std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's per-thread buffers
+  std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's buffers of the threads after the first
   // Counting sort of the cells into the grid, and their centres and bounding radii in grid order (sorted).
   std::vector<std::int32_t> cell_start_, cell_of_, sorted_;
   struct GridBody {

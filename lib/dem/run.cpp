@@ -47,7 +47,6 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   const std::size_t nb = model.beams().size();
   Ledger ledger;
   std::vector<BeamBreak> broken;
-  broken.reserve(nb);
   io::BodyFrame frame;
   frame.position.resize(2 * n);
   frame.velocity.resize(2 * n);
