@@ -68,8 +68,8 @@ void Beams::index_cells() {
     const std::int32_t b = active_.beam[k];
     const auto i = static_cast<std::size_t>(active_.i[k]);
     const auto j = static_cast<std::size_t>(active_.j[k]);
-    beams_of_[static_cast<std::size_t>(cell_start_[i] + cell_count_[i]++)] = {b, 0, 1.0};
-    beams_of_[static_cast<std::size_t>(cell_start_[j] + cell_count_[j]++)] = {b, 1, -1.0};
+    beams_of_[static_cast<std::size_t>(cell_start_[i] + cell_count_[i]++)] = {b, 0};
+    beams_of_[static_cast<std::size_t>(cell_start_[j] + cell_count_[j]++)] = {b, 1};
   }
 }
 
@@ -252,8 +252,9 @@ void Beams::gather(std::span<double> f, bool add) const {
     for (auto s = start[c]; s < start[c] + beams_in[c]; ++s) {
       const CellBeam cb = beams_of[s];
       const BeamForce& r = out[static_cast<std::size_t>(cb.beam)];
-      sx += cb.sign * r.fx;
-      sy += cb.sign * r.fy;
+      const double sign = 1 - 2 * cb.end;  // (exact: +1 or −1)
+      sx += sign * r.fx;
+      sy += sign * r.fy;
       st += r.torque[cb.end];
     }
     fx[c] = sx;
@@ -263,21 +264,26 @@ void Beams::gather(std::span<double> f, bool add) const {
 }
 
 double Beams::energy(std::span<const double> q) const {
-  // Each beam's energy in parallel, in its own slot; then sums over fixed blocks of beams (each by the thread
-  // whose part the block starts in), added up in block order: the same bits whatever the thread count.
+  // Sums over fixed blocks of beams, each block in beam order by one thread (the threads take whole blocks),
+  // added up in block order: the same bits whatever the thread count.
   constexpr std::size_t kBlock = 256;
   const std::size_t count = active_.size(), blocks = (count + kBlock - 1) / kBlock;
-  if (energy_.size() < count) energy_.resize(count);
   energy_blocks_.resize(blocks);
-  double* energy = energy_.data();
   double* part = energy_blocks_.data();
   as_team(count > kMinParallelItems, [&] {
-    const Range mine = this_thread_range(count);
-    each_response<BeamResponsePart::energy>(
-        q, active_, mine.first, mine.last,
-        [&](std::size_t k, std::size_t, const BeamResponse& r) { energy[k] = r.energy; });
-    team_barrier();
-    block_sums(energy, count, kBlock, mine, part);
+    const Range mine = this_thread_range(blocks);
+    const std::size_t first = mine.first * kBlock, last = std::min(count, mine.last * kBlock);
+    std::size_t b = mine.first;
+    double sum = 0;
+    each_response<BeamResponsePart::energy>(q, active_, first, last,
+                                            [&](std::size_t k, std::size_t, const BeamResponse& r) {
+                                              if (k == (b + 1) * kBlock) {
+                                                part[b++] = sum;
+                                                sum = 0;
+                                              }
+                                              sum += r.energy;
+                                            });
+    if (last > first) part[b] = sum;
   });
   return sum_of_blocks(part, count, kBlock);
 }

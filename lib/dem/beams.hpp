@@ -103,19 +103,17 @@ class Beams {
   };
   mutable std::vector<BeamForce> force_;  // per beam (indexed by beam), filled in parallel for the intact ones
   // The intact beams of each cell in beam order (beams_of_[cell_start_[c] .. + cell_count_[c])), with
-  // which end the cell is (0: i, 1: j) and the sign of the force on it (+1, −1): each cell gathers its
+  // which end the cell is (0: i, 1: j; the force on it has the sign 1 − 2·end): each cell gathers its
   // beams' forces in the order a loop over the beams would add them (the same bits), so cells can be
   // summed in parallel. A broken beam is taken out of its two cells' lists.
   struct CellBeam {
     std::int32_t beam;
     std::int32_t end;
-    double sign;  // 1 − 2·end, kept so that the gather loop converts nothing
   };
   void index_cells();
   void unindex(std::size_t b);
   std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
-  mutable std::vector<double> energy_;     // per active beam: its elastic energy (energy(), in parallel)
   mutable std::vector<double> energy_blocks_;  // energy()'s sums over fixed blocks of active beams
   struct Verdict {
     int mode;       // breaking_mode's
