@@ -127,7 +127,8 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
   if (t > 0) buf.clear();
   const std::size_t gx = grid_x_, gy = grid_y_;
   const GridBody* body = grid_body_.data();
-  auto pairs_of = [&](std::size_t i) {
+  // use(j, dx, dy) for every j > i whose bounding circle comes within the skin of i's, in the order of the scan.
+  auto pairs_of = [&](std::size_t i, auto&& use) {
     const auto ci = static_cast<std::size_t>(cell_of_[i]);
     const double xi = x[i], yi = y[i], ri = bodies_->bound_radius[i];
     const std::size_t cx = ci % gx, cy = ci / gx;
@@ -143,26 +144,36 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
           const auto j = static_cast<std::size_t>(body[s].index);
           const double dx = body[s].x - xi, dy = body[s].y - yi;
           const double reach = ri + body[s].r + skin_;
-          if (dx * dx + dy * dy >= reach * reach) continue;
-          const auto* const begin = previous_.data() + previous_first_[i];
-          const auto* const last = previous_.data() + previous_first_[i + 1];
-          const auto* const known =
-              std::find_if(begin, last, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
-          if (known != last) {
-            buf.push_back(*known);
-            continue;
-          }
-          const Vec2 dij(dx, dy);
-          buf.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
-                         static_cast<std::int32_t>(geometry::facing_edge(world(i), dij)),
-                         static_cast<std::int32_t>(geometry::facing_edge(world(j), -dij)), false, 0, 0,
-                         {}});
+          if (dx * dx + dy * dy < reach * reach) use(j, dx, dy);
         }
       }
     }
   };
+  // A pair found again keeps what it learnt; a new one starts from its facing edges.
+  auto keep_pairs_of = [&](std::size_t i) {
+    pairs_of(i, [&](std::size_t j, double dx, double dy) {
+      const auto* const begin = previous_.data() + previous_first_[i];
+      const auto* const last = previous_.data() + previous_first_[i + 1];
+      const auto* const known =
+          std::find_if(begin, last, [&](const NeighbourPair& o) { return o.j == static_cast<std::int32_t>(j); });
+      if (known != last) {
+        buf.push_back(*known);
+        return;
+      }
+      const Vec2 dij(dx, dy);
+      buf.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
+                     static_cast<std::int32_t>(geometry::facing_edge(world(i), dij)),
+                     static_cast<std::int32_t>(geometry::facing_edge(world(j), -dij)), false, 0, 0, {}});
+    });
+  };
   if (gx > 0) {
-    for (std::size_t i = n * t / nt; i < n * (t + 1) / nt; ++i) pairs_of(i);
+    const std::size_t first = n * t / nt, last = n * (t + 1) / nt;
+    if (previous_.empty()) {  // (the first build, with no list to size it by: counted first, allocated once)
+      std::size_t count = 0;
+      for (std::size_t i = first; i < last; ++i) pairs_of(i, [&](std::size_t, double, double) { ++count; });
+      buf.reserve(count);
+    }
+    for (std::size_t i = first; i < last; ++i) keep_pairs_of(i);
   }
   team_barrier();
   if (t == 0) {  // (one thread; the others wait at the barrier after)
