@@ -182,10 +182,19 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   // Each thread tests its part of the pairs in order: the first thread puts its contacts straight into the list,
   // the others into lists of their own, copied in behind it once every thread has counted its contacts. Every
   // list grows with its contacts (they are far fewer than the pairs), so the list's room follows the contacts.
-  const Range part = static_range(list_.size(), t, nt);
+  const Range part = balanced_part(t, nt);
   Fill fill{t == 0 ? &out : &staged_[t], 0, 0, 0};
   std::int64_t candidates = 0;
-  for (std::size_t p = part.first; p < part.last; ++p) candidates += test_pair(p, x, y, slack, fill);
+  // (The contacts of each chunk of pairs counted for the next evaluation's split: this thread's chunks only.)
+  const std::size_t pairs = list_.size(), chunks = (pairs + kChunkPairs - 1) / kChunkPairs;
+  std::vector<std::uint32_t>& counts = chunk_contacts_[parity_];
+  const bool count = counts.size() == chunks;
+  for (std::size_t c = part.first / kChunkPairs; c * kChunkPairs < part.last; ++c) {
+    const std::size_t before = fill.next;
+    for (std::size_t p = c * kChunkPairs; p < std::min(part.last, (c + 1) * kChunkPairs); ++p)
+      candidates += test_pair(p, x, y, slack, fill);
+    if (count) counts[c] = static_cast<std::uint32_t>(fill.next - before);
+  }
   candidates_.mine() = candidates;
   const std::size_t own = fill.next;
   if (nt > 1) {
@@ -211,6 +220,34 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   block.count = static_cast<std::int64_t>(fill.next - first);
   out.block[t] = {first, fill.next};
   if (nt > 1) set_touch(out, first, fill.next, nt);
+}
+
+Range ContactSearch::balanced_part(std::size_t t, std::size_t nt) const {
+  // Whole chunks of pairs, so that each chunk's count has one writer; by the weight of the last evaluation's
+  // chunks (a pair, and kContactWeight more for each contact it had): the threads then finish together where
+  // the contacts crowd. Any split gives the same list (each thread's contacts in pair order, joined in thread
+  // order); this one depends on the last evaluation alone, so it is the same in every run.
+  const std::size_t pairs = list_.size(), chunks = (pairs + kChunkPairs - 1) / kChunkPairs;
+  if (nt == 1) return {0, pairs};
+  const std::vector<std::uint32_t>& last = chunk_contacts_[parity_ ^ 1];
+  const bool known = last.size() == chunks;  // (not after a rebuild: then by the pairs alone)
+  const auto weight = [&](std::size_t c) {
+    const double w = static_cast<double>(std::min(pairs, (c + 1) * kChunkPairs) - c * kChunkPairs);
+    return known ? w + kContactWeight * static_cast<double>(last[c]) : w;
+  };
+  double total = 0;
+  for (std::size_t c = 0; c < chunks; ++c) total += weight(c);
+  // Thread u's part starts at the first chunk whose weight before it reaches total · u / nt.
+  const auto start = [&](std::size_t u) {
+    if (u == 0) return std::size_t{0};
+    if (u >= nt) return chunks;
+    const double goal = total * static_cast<double>(u) / static_cast<double>(nt);
+    double before = 0;
+    std::size_t c = 0;
+    while (c < chunks && before + 0.5 * weight(c) < goal) before += weight(c++);
+    return c;
+  };
+  return {std::min(pairs, start(t) * kChunkPairs), std::min(pairs, start(t + 1) * kChunkPairs)};
 }
 
 void ContactSearch::set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const {
@@ -239,6 +276,11 @@ void ContactSearch::find_end(ContactList& out) {
     multi_crossing += blocks_[b].multi_crossing;
   }
   out.count_ = static_cast<std::size_t>(total);
+  // The counts just taken are the next split's; the other array takes the next ones (sized to the list).
+  const std::size_t chunks = (list_.size() + kChunkPairs - 1) / kChunkPairs;
+  if (chunk_contacts_[parity_].size() != chunks) chunk_contacts_[parity_].assign(chunks, 0);
+  parity_ ^= 1;
+  if (chunk_contacts_[parity_].size() != chunks) chunk_contacts_[parity_].assign(chunks, 0);
   out.blocks = teams_;
   out.candidate_pairs = candidates;
   out.enclosed = enclosed;

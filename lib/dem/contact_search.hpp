@@ -9,6 +9,7 @@
 // the contacts, not with the pairs (far fewer: memory).
 // The overlap of a pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches,
 // precomputed per cell edge, which leave out clip lines that cannot cut.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -75,6 +76,13 @@ class ContactSearch {
   TeamSlots<std::size_t> own_contacts_;  // per thread: the contacts of its part of the pairs
   TeamSlots<std::size_t> room_;          // the list's room after the first thread's fill (its slot only)
   std::vector<ContactList> staged_;      // per thread but the first: the contacts of its part of the pairs
+  // Thread t's part of the pairs, of a team of nt: whole chunks of kChunkPairs, split by the last evaluation's
+  // contacts (each costs the pair tests of about kContactWeight pairs without one).
+  static constexpr std::size_t kChunkPairs = 1024;
+  static constexpr double kContactWeight = 16;
+  Range balanced_part(std::size_t t, std::size_t nt) const;
+  std::array<std::vector<std::uint32_t>, 2> chunk_contacts_;  // contacts per chunk: the last evaluation's, and this one's
+  int parity_ = 0;                                            // chunk_contacts_[parity_]: this evaluation's
   // out.touch for this thread's block, [first, last), of a team of nt.
   void set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const;
 };
