@@ -1,7 +1,9 @@
 #include "dem/beams.hpp"
 
 #include <algorithm>
+#include <string>
 
+#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/vector_kernel.hpp"
 
@@ -29,28 +31,50 @@ void Beams::BeamTable::erase(std::size_t k) {
   resize(size() - 1);
 }
 
+void Beams::BeamTable::push_back(const BeamTable& source, std::size_t from) {
+  resize(size() + 1);
+  copy_entry(size() - 1, source, from);
+}
+
+template <class Keep>
+Beams::BeamTable Beams::BeamTable::merged(const BeamTable& a, const BeamTable& b, Keep&& in) {
+  BeamTable out;
+  std::size_t ka = 0, kb = 0, count = b.size();
+  for (std::size_t k = 0; k < a.size(); ++k) count += in(a, k) ? 1 : 0;
+  out.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    while (ka < a.size() && !in(a, ka)) ++ka;
+    if (kb == b.size() || (ka < a.size() && a.beam[ka] < b.beam[kb])) {
+      out.copy_entry(k, a, ka++);
+    } else {
+      out.copy_entry(k, b, kb++);
+    }
+  }
+  return out;
+}
+
 Beams::Beams(const mesh::CellMesh& mesh, const Material& m) : n_(mesh.cells()) {
   const std::size_t nb = mesh.beams();
-  all_.resize(nb);
+  BeamTable& all = active_;  // (every beam intact)
+  all.resize(nb);
   intact_.assign(nb, 1);
   for (std::size_t b = 0; b < nb; ++b) {
-    all_.beam[b] = static_cast<std::int32_t>(b);
-    all_.i[b] = static_cast<std::int32_t>(mesh.beam[b][0]);
-    all_.j[b] = static_cast<std::int32_t>(mesh.beam[b][1]);
-    const auto i = static_cast<std::size_t>(all_.i[b]), j = static_cast<std::size_t>(all_.j[b]);
+    all.beam[b] = static_cast<std::int32_t>(b);
+    all.i[b] = static_cast<std::int32_t>(mesh.beam[b][0]);
+    all.j[b] = static_cast<std::int32_t>(mesh.beam[b][1]);
+    const auto i = static_cast<std::size_t>(all.i[b]), j = static_cast<std::size_t>(all.j[b]);
     const auto d = mesh.centroid[j] - mesh.centroid[i];
     // l0 from the centroids (the initial, force-free state), not from the stored length, so that the
     // reference state is exactly unstressed.
     const double l0 = d.norm();
-    all_.l0[b] = l0;
-    all_.e0x[b] = d.x() / l0;
-    all_.e0y[b] = d.y() / l0;
+    all.l0[b] = l0;
+    all.e0x[b] = d.x() / l0;
+    all.e0y[b] = d.y() / l0;
     const BeamStiffness k = beam_stiffness(l0, mesh.beam_section[b], m.thickness, m.beam_modulus, m.shear_ratio);
-    all_.alpha[b] = k.alpha;
-    all_.beta[b] = k.beta;
-    all_.delta[b] = k.delta;
+    all.alpha[b] = k.alpha;
+    all.beta[b] = k.beta;
+    all.delta[b] = k.delta;
   }
-  active_ = all_;
   index_cells();
   force_.resize(nb);
 }
@@ -73,24 +97,33 @@ void Beams::index_cells() {
   }
 }
 
-void Beams::unindex(std::size_t b) {
-  for (const std::int32_t c : {all_.i[b], all_.j[b]}) {
+Beams::Entry Beams::find(std::size_t b) const {
+  for (const BeamTable* t : {&active_, &retired_}) {
+    const auto hit = std::lower_bound(t->beam.begin(), t->beam.end(), static_cast<std::int32_t>(b));
+    if (hit != t->beam.end() && *hit == static_cast<std::int32_t>(b)) return {t, static_cast<std::size_t>(hit - t->beam.begin())};
+  }
+  throw RuntimeError("beams: no beam " + std::to_string(b));
+}
+
+void Beams::unindex(const BeamTable& t, std::size_t k) {
+  const std::int32_t b = t.beam[k];
+  for (const std::int32_t c : {t.i[k], t.j[k]}) {
     CellBeam* first = beams_of_.data() + cell_start_[static_cast<std::size_t>(c)];
     CellBeam* last = first + cell_count_[static_cast<std::size_t>(c)];
-    CellBeam* hit = std::find_if(first, last, [b](const CellBeam& e) { return e.beam == static_cast<std::int32_t>(b); });
+    CellBeam* hit = std::find_if(first, last, [b](const CellBeam& e) { return e.beam == b; });
     if (hit == last) continue;  // not listed (cannot happen for an intact beam)
     std::copy(hit + 1, last, hit);  // the others keep their order
     --cell_count_[static_cast<std::size_t>(c)];
   }
 }
 
-BeamResponse Beams::response(std::size_t b, std::span<const double> q) const {
-  const auto i = static_cast<std::size_t>(all_.i[b]), j = static_cast<std::size_t>(all_.j[b]);
+BeamResponse Beams::response(const BeamTable& t, std::size_t k, std::span<const double> q) const {
+  const auto i = static_cast<std::size_t>(t.i[k]), j = static_cast<std::size_t>(t.j[k]);
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  return beam_response(x[j] - x[i], y[j] - y[i], all_.e0x[b], all_.e0y[b], phi[i], phi[j], all_.l0[b],
-                       stiffness(b));
+  return beam_response(x[j] - x[i], y[j] - y[i], t.e0x[k], t.e0y[k], phi[i], phi[j], t.l0[k],
+                       Entry{&t, k}.stiffness());
 }
 
 void Beams::add_forces(std::span<const double> q, std::span<double> f) const { forces(q, f, true); }
@@ -198,8 +231,8 @@ void Beams::each_block(std::span<const double> q, const BeamTable& t, std::size_
 
 template <BeamResponsePart P, class Use>
 void Beams::each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
-                          Use&& use) const {
-  const bool some_broken = &t == &active_ && broken_in_active_ > 0;
+                          Use&& use, bool broken_too) const {
+  const bool some_broken = !broken_too && &t == &active_ && broken_in_active_ > 0;
   each_block(q, t, first, last, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
     respond_block<P>(blk, count);
     for (std::size_t k = 0; k < count; ++k) {
@@ -220,7 +253,7 @@ void Beams::each_response(std::span<const double> q, const BeamTable& t, std::si
         }
         use(start + k, b, r);
       } else {
-        use(start + k, b, response(b, q));
+        use(start + k, b, response(t, start + k, q));
       }
     }
   });
@@ -289,13 +322,14 @@ double Beams::energy(std::span<const double> q) const {
 }
 
 void Beams::strains(std::span<const double> q, std::span<double> out) const {
-  const std::size_t count = size();
   double* strain = out.data();
-  as_team(count > kMinParallelItems, [&] {
-    const Range mine = this_thread_range(count);
-    each_response<BeamResponsePart::strain>(
-        q, all_, mine.first, mine.last,
-        [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; });
+  as_team(size() > kMinParallelItems, [&] {
+    for (const BeamTable* t : {&active_, &retired_}) {
+      const Range mine = this_thread_range(t->size());
+      each_response<BeamResponsePart::strain>(
+          q, *t, mine.first, mine.last, [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; },
+          true);
+    }
   });
 }
 
@@ -326,7 +360,7 @@ void Beams::find_breaks(std::span<const double> q, double t_eps, double t_theta)
       if (intact_[b] == 0) continue;  // broke before, not yet out of the list
       Verdict v{0, 0.0};
       v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
-                                   blk.l0[k], stiffness(b), t_eps, t_theta, v.energy);
+                                   blk.l0[k], Entry{&active_, start + k}.stiffness(), t_eps, t_theta, v.energy);
       if (v.mode != 0) out.push_back({start + k, v});
     }
   });
@@ -338,7 +372,7 @@ void Beams::apply_breaks(std::vector<BeamBreak>& broken) {
     for (const Breaking& e : breaking_[t]) {
       const auto b = static_cast<std::size_t>(active_.beam[e.entry]);
       intact_[b] = 0;
-      unindex(b);
+      unindex(active_, e.entry);
       broken.push_back({static_cast<std::int64_t>(b), e.verdict.mode, e.verdict.energy});
       ++broken_in_active_;
     }
@@ -348,6 +382,9 @@ void Beams::apply_breaks(std::vector<BeamBreak>& broken) {
 }
 
 void Beams::compact_active() {
+  retired_ = BeamTable::merged(active_, retired_, [&](const BeamTable& t, std::size_t k) {
+    return intact_[static_cast<std::size_t>(t.beam[k])] == 0;
+  });
   std::size_t kept = 0;
   for (std::size_t k = 0; k < active_.size(); ++k) {
     if (intact_[static_cast<std::size_t>(active_.beam[k])] == 0) continue;
@@ -361,26 +398,30 @@ void Beams::compact_active() {
 void Beams::remove(std::size_t b) {
   if (!intact_[b]) return;
   intact_[b] = 0;
-  active_.erase(static_cast<std::size_t>(
-      std::find(active_.beam.begin(), active_.beam.end(), static_cast<std::int32_t>(b)) - active_.beam.begin()));
-  unindex(b);
+  const std::size_t k = find(b).k;  // (an intact beam is in active_)
+  unindex(active_, k);
+  BeamTable one;
+  one.push_back(active_, k);
+  retired_ = BeamTable::merged(one, retired_, [](const BeamTable&, std::size_t) { return true; });
+  active_.erase(k);
 }
 
 void Beams::remove_all() {
   std::fill(intact_.begin(), intact_.end(), std::uint8_t{0});
-  active_.resize(0);
+  retired_ = BeamTable::merged(active_, retired_, [](const BeamTable&, std::size_t) { return true; });
+  active_ = BeamTable{};
   broken_in_active_ = 0;
   index_cells();
 }
 
 void Beams::visit_state(StateArchive& archive) {
   StateArchive::Scope scope(archive, "beams");
-  archive.array("intact", intact_, all_.size());
+  archive.array("intact", intact_, size());
   // The active list as it stands, broken beams not yet compacted out included: its blocks order the sums.
   std::vector<std::int32_t> active(active_.beam);
   archive.array("active", active);
   if (!archive.loading()) return;
-  archive.require_below("active", active, all_.size());
+  archive.require_below("active", active, size());
   std::size_t in_active = 0;
   for (std::size_t k = 0; k < active.size(); ++k) {
     if (k > 0 && active[k] <= active[k - 1]) archive.refuse("active", "not in beam order");
@@ -389,12 +430,17 @@ void Beams::visit_state(StateArchive& archive) {
   }
   if (in_active != static_cast<std::size_t>(std::count(intact_.begin(), intact_.end(), std::uint8_t{1})))
     archive.refuse("active", "leaves out an intact beam");
-  active_.resize(active.size());
-  for (std::size_t k = 0; k < active.size(); ++k) active_.copy_entry(k, all_, static_cast<std::size_t>(active[k]));
+  // Every beam in beam order, then split: those of the active list, and the others.
+  const BeamTable all = BeamTable::merged(active_, retired_, [](const BeamTable&, std::size_t) { return true; });
+  std::vector<std::uint8_t> listed(size(), 0);
+  for (const std::int32_t b : active) listed[static_cast<std::size_t>(b)] = 1;
+  const BeamTable none;
+  active_ = BeamTable::merged(all, none, [&](const BeamTable& t, std::size_t k) { return listed[static_cast<std::size_t>(t.beam[k])] == 1; });
+  retired_ = BeamTable::merged(all, none, [&](const BeamTable& t, std::size_t k) { return listed[static_cast<std::size_t>(t.beam[k])] == 0; });
   broken_in_active_ = active.size() - in_active;
   index_cells();
-  for (const std::int32_t b : active)
-    if (!intact_[static_cast<std::size_t>(b)]) unindex(static_cast<std::size_t>(b));
+  for (std::size_t k = 0; k < active_.size(); ++k)
+    if (!intact_[static_cast<std::size_t>(active_.beam[k])]) unindex(active_, k);
 }
 
 }  // namespace frac::dem

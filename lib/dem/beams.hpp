@@ -1,6 +1,6 @@
 #pragma once
-// All beams of a sample: per-beam data in arrays, the intact ones in an active list (a broken beam is never
-// tested again), the force loop, the energy, and the breaking pass.
+// All beams of a sample: per-beam data in arrays, the intact ones in an active table (a broken beam is never
+// tested again), the broken ones moved to a table of their own; the force loop, the energy, and the breaking pass.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -27,13 +27,14 @@ class Beams {
   Beams() = default;
   Beams(const mesh::CellMesh& mesh, const Material& material);
 
-  std::size_t size() const { return all_.size(); }
+  std::size_t size() const { return intact_.size(); }
   std::size_t intact_count() const { return active_.size() - broken_in_active_; }
   std::span<const std::uint8_t> intact() const { return intact_; }
-  std::int32_t cell_i(std::size_t b) const { return all_.i[b]; }
-  std::int32_t cell_j(std::size_t b) const { return all_.j[b]; }
-  BeamStiffness stiffness(std::size_t b) const { return {all_.alpha[b], all_.beta[b], all_.delta[b]}; }
-  double rest_length(std::size_t b) const { return all_.l0[b]; }
+  // Beam b's cells and constants (a search: not for loops).
+  std::int32_t cell_i(std::size_t b) const { return find(b).table->i[find(b).k]; }
+  std::int32_t cell_j(std::size_t b) const { return find(b).table->j[find(b).k]; }
+  BeamStiffness stiffness(std::size_t b) const { return find(b).stiffness(); }
+  double rest_length(std::size_t b) const { return find(b).table->l0[find(b).k]; }
 
   // Adds the beam forces and moments at state q into f (same layout as q: fx, fy, torque). (Their power
   // is not bookkept as work: the beam law derives from an energy, which the ledger holds.)
@@ -68,9 +69,9 @@ class Beams {
  private:
   // add_forces (add) or set_forces.
   void forces(std::span<const double> q, std::span<double> f, bool add) const;
-  BeamResponse response(std::size_t b, std::span<const double> q) const;
-  // Per-beam data in arrays, entry k for beam beam[k]: every beam in beam order (all_), or the intact ones in the
-  // order of the active list (active_), so that a loop over either reads its beams' constants in sequence.
+  // Per-beam data in arrays, entry k for beam beam[k], in beam order: the intact beams (active_, and the broken
+  // ones not yet compacted out of it) and the broken ones (retired_). Each beam is in one of the two, so that a
+  // loop over the intact ones reads their constants in sequence, and no constant is held twice.
   struct BeamTable {
     std::vector<std::int32_t> beam, i, j;
     std::vector<double> e0x, e0y, l0, alpha, beta, delta;
@@ -78,16 +79,29 @@ class Beams {
     void resize(std::size_t n);
     void copy_entry(std::size_t to, const BeamTable& source, std::size_t from);  // entry `to` := source's `from`
     void erase(std::size_t k);                          // the entries after k move up by one
+    void push_back(const BeamTable& source, std::size_t from);
+    // The entries of a and b (each in beam order, no beam in both) merged in beam order; in(a, k): whether a's
+    // entry k goes in.
+    template <class Keep>
+    static BeamTable merged(const BeamTable& a, const BeamTable& b, Keep&& in);
   };
+  struct Entry {
+    const BeamTable* table;
+    std::size_t k;
+    BeamStiffness stiffness() const { return {table->alpha[k], table->beta[k], table->delta[k]}; }
+  };
+  Entry find(std::size_t b) const;  // where beam b is (b < size())
+  BeamResponse response(const BeamTable& t, std::size_t k, std::span<const double> q) const;
   // use(k, b, r) with beam_response's values r of beam b = t.beam[k], for k in [first, last), in order, where r
   // holds part P (the other fields are zero): in blocks, the beams' states gathered into arrays, then the
   // branch-free formula of a beam near its reference orientation as a vector loop over them (no library call,
   // no branch, no indirect load), then beam_response, one at a time, for the beams it does not cover (rotated
   // by more than π/8: the spinning fragments of an explosion). (beams.cpp only.)
-  // A broken beam still in the table (the active list between compactions) gets a zero response, uncomputed.
+  // A broken beam still in the active table (between compactions) gets a zero response, uncomputed, unless
+  // `broken_too`.
   template <BeamResponsePart P, class Use>
   void each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
-                     Use&& use) const;
+                     Use&& use, bool broken_too = false) const;
   // on_block(start, count, block) for blocks of the entries [first, last) of t, in order: the states at q of
   // entries start .. start + count − 1 gathered into the block's arrays, its constants pointing into t
   // (beams.cpp's ResponseBlock).
@@ -95,7 +109,7 @@ class Beams {
   void each_block(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
                   OnBlock&& on_block) const;
   std::size_t n_ = 0;  // cells
-  BeamTable all_, active_;
+  BeamTable active_, retired_;
   std::vector<std::uint8_t> intact_;
   struct BeamForce {
     double fx, fy;
@@ -111,7 +125,7 @@ class Beams {
     std::int32_t end;
   };
   void index_cells();
-  void unindex(std::size_t b);
+  void unindex(const BeamTable& t, std::size_t k);  // takes entry k's beam out of its cells' lists
   std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
   mutable std::vector<double> energy_blocks_;  // energy()'s sums over fixed blocks of active beams
@@ -132,7 +146,7 @@ class Beams {
   void find_breaks(std::span<const double> q, double t_eps, double t_theta);
   void apply_breaks(std::vector<BeamBreak>& broken);
   std::size_t broken_in_active_ = 0;
-  void compact_active();
+  void compact_active();  // the broken beams of active_ moved to retired_
 };
 
 }  // namespace frac::dem

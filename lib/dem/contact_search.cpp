@@ -85,8 +85,8 @@ void ContactSearch::test_pair_further(std::size_t p, const double* x, const doub
     // (A facing edge that is the cached one was just tested.)
     if ((fi != static_cast<std::size_t>(pair.edge_i) && geometry::edge_separates(pi, fi, pj, slack, pair.deepest_i)) ||
         (fj != static_cast<std::size_t>(pair.edge_j) && geometry::edge_separates(pj, fj, pi, slack, pair.deepest_j))) {
-      pair.edge_i = static_cast<std::int32_t>(fi);
-      pair.edge_j = static_cast<std::int32_t>(fj);
+      pair.edge_i = static_cast<std::uint8_t>(fi);
+      pair.edge_j = static_cast<std::uint8_t>(fj);
       return;
     }
   }

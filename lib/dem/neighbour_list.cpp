@@ -162,8 +162,8 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
       }
       const Vec2 dij(dx, dy);
       buf.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
-                     static_cast<std::int32_t>(geometry::facing_edge(world(i), dij)),
-                     static_cast<std::int32_t>(geometry::facing_edge(world(j), -dij)), false, 0, 0, {}});
+                     static_cast<std::uint8_t>(geometry::facing_edge(world(i), dij)),
+                     static_cast<std::uint8_t>(geometry::facing_edge(world(j), -dij)), false, 0, 0, {}});
     });
   };
   if (gx > 0) {
@@ -172,16 +172,19 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
       std::size_t count = 0;
       for (std::size_t i = first; i < last; ++i) pairs_of(i, [&](std::size_t, double, double) { ++count; });
       buf.reserve(count);
+    } else if (t > 0) {  // (sized by the old list's pairs of these cells: grown by doubling, it could take twice)
+      const auto before = static_cast<std::size_t>(previous_first_[last] - previous_first_[first]);
+      buf.reserve(before + before / 16 + 64);
     }
     for (std::size_t i = first; i < last; ++i) keep_pairs_of(i);
   }
   team_barrier();
   if (t == 0) {  // (one thread; the others wait at the barrier after)
+    std::vector<NeighbourPair>().swap(previous_);  // (read by no thread now: freed before the list may grow)
     for (std::size_t b = 1; b < nt; ++b) {
       pairs_.insert(pairs_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
       std::vector<NeighbourPair>().swap(thread_pairs_[b]);
     }
-    std::vector<NeighbourPair>().swap(previous_);  // (read by no thread now: memory for the steps until the next build)
   }
   team_barrier();
 }

@@ -18,9 +18,11 @@
 namespace frac::dem {
 
 // A pair of cells i < j of the list, with what the pair tests (dem/contact_search) learnt about it.
+// (Edge and vertex indices in a byte: a contact polygon has at most kMaxContactPolygonVertices.)
+static_assert(geometry::kMaxContactPolygonVertices <= 256);
 struct NeighbourPair {
   std::int32_t i, j;
-  std::int32_t edge_i, edge_j;        // the facing edges that last separated the pair (first vertex index)
+  std::uint8_t edge_i, edge_j;        // the facing edges that last separated the pair (first vertex index)
   bool overlapping;                   // the pair overlapped at the last search
   std::uint8_t deepest_i, deepest_j;  // the vertices of P_j and P_i deepest along edge_i's and edge_j's normals
   geometry::OverlapLines lines;       // the lines of its last overlap (convex_overlap's cache)

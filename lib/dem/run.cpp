@@ -39,7 +39,7 @@ std::string blame_non_finite(const Model& model, const dynamics::Integrator& in,
 }  // namespace
 
 RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
-                   std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
+                   std::vector<double> q0, std::vector<double> v0, double dt, io::RunWriter* writer,
                    Progress& progress, double start_tau, const io::Continuation& continuation) {
   RunSummary summary;
   summary.dt = dt;
@@ -47,16 +47,12 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   const std::size_t nb = model.beams().size();
   Ledger ledger;
   std::vector<BeamBreak> broken;
-  io::BodyFrame frame;
-  frame.position.resize(2 * n);
-  frame.velocity.resize(2 * n);
-  frame.angle.resize(n);
-  frame.angular_velocity.resize(n);
-  frame.intact.resize(nb);
-  frame.strain.resize(nb);
 
+  const dynamics::RunawayGuard runaway(q0, n, "cell");
   summary.start_evaluations =
       dynamics::start(integrator, model, 0.0, dt, q0, v0, scene.integrator.start, start_tau);
+  std::vector<double>().swap(q0);  // (the integrator's state from here on)
+  std::vector<double>().swap(v0);
   const ContactLaws& laws = model.contact_laws();
   ledger.law_work.assign(laws.size(), 0.0);
   std::vector<double> previous_power(laws.size());
@@ -64,6 +60,14 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   double previous_boundary_power = model.boundary_power();
   auto write_frame = [&](std::int64_t step) {
     if (!writer) return;
+    // (Its buffers only while it is written: memory between frames, when the neighbour list is rebuilt.)
+    io::BodyFrame frame;
+    frame.position.resize(2 * n);
+    frame.velocity.resize(2 * n);
+    frame.angle.resize(n);
+    frame.angular_velocity.resize(n);
+    frame.intact.resize(nb);
+    frame.strain.resize(nb);
     const auto q = integrator.q();
     const auto v = integrator.v();
     for (std::size_t k = 0; k < n; ++k) {
@@ -93,7 +97,6 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     return false;
   };
   double e0 = 0;
-  const dynamics::RunawayGuard runaway(q0, n, "cell");
   auto observe = [&](std::int64_t step) {
     const auto q = integrator.q();
     runaway.check(q, step, integrator.t());

@@ -41,8 +41,9 @@ struct Ledger {
 // starts as scene.integrator.start says; `start_tau` is the time scale of an exact start
 // (dynamics::taylor_derivatives: about 0.1/ω_max). With checkpoints, one is written when due and when a stop
 // signal arrives (then Interrupted is thrown).
+// The initial state (q0, v0) is released once the integrator has started from it (memory).
 RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
-                   std::span<const double> q0, std::span<const double> v0, double dt, io::RunWriter* writer,
+                   std::vector<double> q0, std::vector<double> v0, double dt, io::RunWriter* writer,
                    Progress& progress, double start_tau, const io::Continuation& continuation = {});
 
 }  // namespace frac::dem

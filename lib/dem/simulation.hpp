@@ -3,6 +3,7 @@
 // integrator, ready to run. What dem-run (and tests, benchmarks) build before calling run_dem.
 #include <algorithm>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "dem/loading.hpp"
@@ -23,8 +24,10 @@ struct Simulation {
   TimeStep time_step;
   std::unique_ptr<dynamics::Integrator> integrator;
   std::vector<double> q0, v0;
+  // Runs the simulation, once: q0 and v0 move into the run (and are empty after it).
   RunSummary run(io::RunWriter* writer, Progress& progress, const io::Continuation& continuation = {}) {
-    return run_dem(model, *integrator, scene, setup, q0, v0, time_step.dt, writer, progress, start_tau(), continuation);
+    return run_dem(model, *integrator, scene, setup, std::move(q0), std::move(v0), time_step.dt, writer, progress,
+                   start_tau(), continuation);
   }
   // Time scale of an exact start: 0.1 of the fastest motion (ω_max, or the damping rate γ_max).
   double start_tau() const {

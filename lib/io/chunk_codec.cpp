@@ -88,7 +88,16 @@ class Deflater {
   bool stored_ = false;  // the stream's level: 0 (stored) or 1 with the run-length strategy
 };
 
+// The calling thread's buffers: the shuffled chunk, the stream, the parts' deflate blocks.
+struct CodecBuffers {
+  std::vector<unsigned char> shuffled, stream;
+  std::vector<std::vector<unsigned char>> parts;
+};
+thread_local CodecBuffers buffers;
+
 }  // namespace
+
+void release_codec_buffers() { buffers = CodecBuffers{}; }
 
 std::span<const unsigned char> shuffle_deflate(std::span<const unsigned char> data, std::size_t element_size,
                                                std::size_t chunk_bytes) {
@@ -96,8 +105,7 @@ std::span<const unsigned char> shuffle_deflate(std::span<const unsigned char> da
       data.size() > chunk_bytes)
     throw RuntimeError("shuffle_deflate: " + std::to_string(data.size()) + " bytes in a chunk of " +
                        std::to_string(chunk_bytes) + " are not whole elements of " + std::to_string(element_size));
-  thread_local std::vector<unsigned char> shuffled, stream;
-  thread_local std::vector<std::vector<unsigned char>> parts;
+  auto& [shuffled, stream, parts] = buffers;
   std::span<const unsigned char> input = data;
   if (element_size > 1 || data.size() < chunk_bytes) {  // (a shuffle of single bytes moves none: HDF5 skips it)
     shuffled.resize(chunk_bytes);

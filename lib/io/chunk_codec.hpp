@@ -21,4 +21,9 @@ namespace frac::io {
 std::span<const unsigned char> shuffle_deflate(std::span<const unsigned char> data, std::size_t element_size,
                                                std::size_t chunk_bytes);
 
+// Frees the calling thread's buffers of shuffle_deflate (the span it returned dies): after a large chunk, so that
+// they do not hold three times its size until the next one.
+void release_codec_buffers();
+inline constexpr std::size_t kKeptCodecBytes = std::size_t{1} << 22;  // chunks up to this size keep them
+
 }  // namespace frac::io

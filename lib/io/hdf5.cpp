@@ -175,7 +175,9 @@ bool encodes_chunks(hid_t mem_type, hid_t file_type) { return H5Tequal(mem_type,
 herr_t write_encoded_chunk(hid_t d, const std::vector<hsize_t>& offset, std::span<const unsigned char> data,
                            std::size_t element_size, std::size_t chunk_bytes) {
   const auto encoded = shuffle_deflate(data, element_size, chunk_bytes);
-  return H5Dwrite_chunk(d, H5P_DEFAULT, 0, offset.data(), encoded.size(), encoded.data());
+  const herr_t status = H5Dwrite_chunk(d, H5P_DEFAULT, 0, offset.data(), encoded.size(), encoded.data());
+  if (chunk_bytes > kKeptCodecBytes) release_codec_buffers();
+  return status;
 }
 
 Group::Group(Hid id, std::string file, std::string path, std::shared_ptr<void> keep_alive,
