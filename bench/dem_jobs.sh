@@ -3,7 +3,7 @@
 # paper's cell size (Kun et al. 1999) at 10^4, 10^5 and 10^6 cells, dt = 1e-7 s, run to T_MAX (the paper's
 # stop rule, 300 steps without a break, off: at 10^5 cells it ends the explosion near 1.1 ms), the scene's output.
 # Usage: bench/dem_jobs.sh [BIN_DIR]
-#   SIZES="10000 100000"  SCENES="explosion impact"  THREADS="1 2"  REPEATS=1
+#   SIZES="10000 100000"  SCENES="explosion impact"  THREADS="1 2"  REPEATS=1 (more: a table of the medians too)
 #   T_MAX=5e-3 (s; the 10^6-cell runs: T_MAX_LARGE=5e-4, through the break-up around the charge or projectile)
 #   REPORT_ONLY=1: the tables again from the runs kept in bench/out/jobs (no run)
 # The disc's diameter and the block's sides grow with the square root of the cells (1100 cells in 0.40 m, 800 in
@@ -86,6 +86,8 @@ echo "dem-run jobs, dt $dt s, $(nproc) cores, $(date -u +%Y-%m-%d)"
 echo
 echo "| job | cells | threads | steps | ns per cell-step, whole run | CPU | before break-up | during | after | wall s | peak MB | KB per cell |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+rows=$(mktemp)
+trap 'rm -f "$rows"' EXIT
 for ((r = 0; r < repeats; r++)); do
   for cells in $sizes; do
     for scene in $scenes; do
@@ -93,9 +95,28 @@ for ((r = 0; r < repeats; r++)); do
         if [[ ${REPORT_ONLY:-0} == 1 ]]; then report_job "$scene" "$cells" "$t"; else run_job "$scene" "$cells" "$t"; fi
       done
     done
-  done
+  done | tee -a "$rows"
   [[ ${REPORT_ONLY:-0} == 1 ]] && break
 done
+
+# The median of each column over the repeats of a job (the middle run; the mean of the middle two for an even count).
+if ((repeats > 1)) && [[ ${REPORT_ONLY:-0} != 1 ]]; then
+  echo
+  echo "Medians over $repeats interleaved repeats:"
+  echo
+  echo "| job | cells | threads | steps | ns per cell-step, whole run | CPU | before break-up | during | after | wall s | peak MB | KB per cell |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+  awk -F'|' '
+    { key = $2 "|" $3 "|" $4; if (!(key in seen)) { seen[key] = 1; order[++jobs] = key }
+      runs[key]++; for (c = 5; c <= 13; ++c) v[key, c, runs[key]] = $c }
+    function median(key, c,   n, i, j, t, a) {
+      n = runs[key]; for (i = 1; i <= n; ++i) a[i] = v[key, c, i] + 0
+      for (i = 2; i <= n; ++i) for (j = i; j > 1 && a[j - 1] > a[j]; --j) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+      return n % 2 ? a[(n + 1) / 2] : 0.5 * (a[n / 2] + a[n / 2 + 1]) }
+    END { for (k = 1; k <= jobs; ++k) { key = order[k]; printf "|%s|", key
+            for (c = 5; c <= 13; ++c) printf " %s |", c == 12 ? sprintf("%.0f", median(key, c)) : c == 13 ? sprintf("%.2f", median(key, c)) : c == 11 ? sprintf("%.1f", median(key, c)) : sprintf("%.0f", median(key, c))
+            printf "\n" } }' "$rows"
+fi
 
 echo
 echo "Contacts and broken beams per cell over time (the last run of each job):"

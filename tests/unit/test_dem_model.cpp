@@ -1103,4 +1103,38 @@ TEST(DemModel, BrokenBeamsWaitingForCompactionCarryNothing) {
   frac::set_threads(before);
 }
 
+// Each beam's constants and strain stay its own wherever it is kept: intact, broken and waiting in the active
+// table, or moved out at a compaction (Beams keeps one table in two parts). Checked against the mesh itself on
+// every beam, after single removals and a compaction; the strain of a broken beam is still computed (frames).
+TEST(DemModel, EveryBeamKeepsItsConstantsAndStrainWhenBroken) {
+  const CellMesh mesh = rect_mesh(20, 14, 6);
+  const Material mat;
+  const std::size_t n = mesh.cells();
+  frac::dem::Beams beams(mesh, mat);
+  for (std::size_t b = 5; b < beams.size(); b += 17) beams.remove(b);
+  std::vector<double> pulled = jittered_state(mesh, 5, 0.002 * kG, 0.005, n + 1);
+  for (std::size_t cell = 3; cell < n; cell += 7) pulled[cell] += 0.1 * kG;
+  std::vector<frac::dem::BeamBreak> broken;
+  beams.break_beams(pulled, mat.t_eps, mat.t_theta, broken);
+  ASSERT_GT(broken.size() * frac::dem::Beams::kCompactEvery, beams.size()) << "enough for a compaction";
+  const std::vector<double> q = jittered_state(mesh, 9, 0.01 * kG, 0.02, 7);
+  std::vector<double> strain(beams.size());
+  beams.strains(q, strain);
+  for (std::size_t b = 0; b < beams.size(); ++b) {
+    const auto i = static_cast<std::size_t>(mesh.beam[b][0]), j = static_cast<std::size_t>(mesh.beam[b][1]);
+    ASSERT_EQ(beams.cell_i(b), mesh.beam[b][0]) << "beam " << b;
+    ASSERT_EQ(beams.cell_j(b), mesh.beam[b][1]) << "beam " << b;
+    const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
+    const double l0 = d0.norm();
+    EXPECT_EQ(beams.rest_length(b), l0) << "beam " << b;
+    const auto k = frac::dem::beam_stiffness(l0, mesh.beam_section[b], mat.thickness, mat.beam_modulus, mat.shear_ratio);
+    EXPECT_EQ(beams.stiffness(b).alpha, k.alpha) << "beam " << b;
+    EXPECT_EQ(beams.stiffness(b).delta, k.delta) << "beam " << b;
+    const auto r = frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0, q[2 * n + i],
+                                            q[2 * n + j], l0, k);
+    // (The strains of 1e-2 from the vector formula or the exact one: round-off apart at most.)
+    EXPECT_NEAR(strain[b], r.strain, 1e-15) << "beam " << b << (beams.intact()[b] ? "" : " (broken)");
+  }
+}
+
 }  // namespace
