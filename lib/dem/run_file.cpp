@@ -1,6 +1,5 @@
 #include "dem/run_file.hpp"
 
-#include <algorithm>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -66,12 +65,23 @@ RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const i
   return s;
 }
 
+std::string energy_balance_text(const RunSummary& s) {
+  std::ostringstream text;
+  text.precision(4);
+  // (A run that starts at rest with no boundary work has no energy to compare with: the error in joules.)
+  if (s.energy_scale > 0)
+    text << "energy balance within " << s.energy_error / s.energy_scale * 100 << " %";
+  else
+    text << "energy balance within " << s.energy_error << " J (no initial energy or boundary work)";
+  return text.str();
+}
+
 std::string summary_line(const RunSummary& s, const Simulation& sim) {
   std::ostringstream line;
   line.precision(4);
   line << s.steps << " steps of " << s.dt << " s to t = " << s.time << " s (" << s.stop_reason << "), " << s.broken
-       << " of " << sim.model.beams().size() << " beams broken, energy balance within "
-       << s.energy_error / std::max(s.energy_scale, 1e-300) * 100 << "% , " << s.wall_seconds << " s wall";
+       << " of " << sim.model.beams().size() << " beams broken, " << energy_balance_text(s) << ", "
+       << s.wall_seconds << " s wall";
   if (s.checkpoints > 0) line << " (" << s.checkpoints << " checkpoints, " << s.checkpoint_seconds << " s)";
   return line.str();
 }

@@ -23,6 +23,9 @@ mesh::CellMesh read_run_mesh(const io::Group& in, const std::string& name);
 RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const io::Group& input,
                        const std::string& output, const CheckpointOptions& checkpoint, Progress& progress);
 
+// The run's energy balance: its largest error in % of the initial energy or boundary work, or in J when both are 0.
+std::string energy_balance_text(const RunSummary& s);
+
 // The one line a run reports: steps, time, stop reason, beams broken, energy balance, wall time.
 std::string summary_line(const RunSummary& s, const Simulation& sim);
 

@@ -29,6 +29,7 @@
 #include "dem/contact_search.hpp"
 #include "dem/model.hpp"
 #include "dem/run.hpp"
+#include "dem/run_file.hpp"
 #include "dem/scene.hpp"
 #include "dem/simulation.hpp"
 #include "dem/timestep.hpp"
@@ -277,6 +278,18 @@ TEST(DemModel, EnergyBalanceInEveryScene) {
       EXPECT_GT(s.broken, 0) << c.name << ": the run should break beams";
     }
   }
+}
+
+// A run with energy to compare with reports its balance in %; one that starts at rest with no boundary work (a
+// scale of 0) reports the error in joules, not a ratio to nothing.
+TEST(DemModel, EnergyBalanceIsReportedAgainstWhatTheRunHad) {
+  frac::dem::RunSummary s;
+  s.energy_error = 0.5;
+  s.energy_scale = 100;
+  EXPECT_EQ(frac::dem::energy_balance_text(s), "energy balance within 0.5 %");
+  s.energy_error = 2e-20;
+  s.energy_scale = 0;
+  EXPECT_EQ(frac::dem::energy_balance_text(s), "energy balance within 2e-20 J (no initial energy or boundary work)");
 }
 
 // The impact's projectile (physics/polygon-dem.md §8.4; loading.impact_width): on the paper's mesh one cell
