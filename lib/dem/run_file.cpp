@@ -68,11 +68,12 @@ RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const i
 std::string energy_balance_text(const RunSummary& s) {
   std::ostringstream text;
   text.precision(4);
+  text << "energy balance within ";
   // (A run that starts at rest with no boundary work has no energy to compare with: the error in joules.)
   if (s.energy_scale > 0)
-    text << "energy balance within " << s.energy_error / s.energy_scale * 100 << " %";
+    text << s.energy_error / s.energy_scale * 100 << " %";
   else
-    text << "energy balance within " << s.energy_error << " J (no initial energy or boundary work)";
+    text << s.energy_error << " J (no initial energy or boundary work)";
   return text.str();
 }
 
