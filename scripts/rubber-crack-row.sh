@@ -28,7 +28,7 @@ damping=$(p physics.damping)
 nx=$(h5dump -a /particles/nodes/nx "$run" | sed -n 's/.*(0): *//p')
 at=$("$bin/observables" "$run" --columns crack_tip_reference_x -q | grep -v '^#' | tail -n +2 |
   awk -F, -v end="$(awk -v n="$nx" -v d="$d" 'BEGIN { print 0.6 * n * d }')" '!found && $2 >= end { print $1; found = 1 }')
-shape=$("$bin/observables" "$run" --crack-shape ${at:+--time "$at"} -q | tr '\n' ' ')
+shape=$("$bin/observables" "$run" --crack-shape ${at:+--time "$at"} -q | grep -v '^#' | tr '\n' ' ')
 "$bin/observables" "$run" --columns crack_tip_reference_x,total_energy -q | grep -v '^#' | tail -n +2 |
   awk -F, -v name="$name" -v b="$(p material.b)" -v lx="$(p loading.stretch_x)" -v ly="$(p loading.stretch_y)" \
       -v rows="$(h5dump -a /particles/nodes/ny "$run" | sed -n 's/.*(0): *//p')" \

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
+#include "io/provenance_text.hpp"
 
 using namespace frac;
 namespace po = boost::program_options;
@@ -25,7 +26,8 @@ int main(int argc, char** argv) {
         "prints `key value` lines: slope, slope_stderr, intercept, points (the elastic moduli: --fit "
         "stress:axial_strain gives K; --fit lateral_strain:axial_strain gives −ν). With --crack-shape (a rubber-run "
         "crack run), measures the crack in one frame and prints `key value` lines: the tip, the angle of the front "
-        "behind which the sheet unloads (the wedge), how far it trails the tip, broken bonds, the grips.",
+        "behind which the sheet unloads (the wedge), how far it trails the tip, broken bonds, the grips. The `key value` "
+        "outputs start with the same '#' provenance line.",
         "  observables run.h5 --columns stress,axial_strain > curve.csv\n"
         "  observables run.h5 --fit stress:axial_strain --where 'axial_strain>0' --after 2e-3\n"
         "  observables crack.h5 --crack-shape --time 1.5e-3"};
@@ -55,16 +57,22 @@ int main(int argc, char** argv) {
     io::check_header(root, {"run"});
     ToolRun run = start_run("observables", cli::command_line(argc, argv));
     io::add_input(run, root);
+    // The "key value" outputs start with the provenance as a '#' line, like the CSV (awk '$1 == "key"' skips it).
+    const auto provenance = [&run] { return io::csv_comment(provenance_line(run)); };
     if (!compare.empty()) {
       const io::Group reference = io::open_input(compare);
       io::check_header(reference, {"run"});
+      io::add_input(run, reference);
       const analysis::PositionDifference d = analysis::compare_final_positions(root, reference, input, compare);
-      std::cout << std::setprecision(10) << "rms_position_difference " << d.rms << "\nmax_position_difference "
-                << d.max << "\ntime " << d.time << "\nreference_time " << d.reference_time << "\n";
+      std::cout << provenance() << std::setprecision(10) << "rms_position_difference " << d.rms
+                << "\nmax_position_difference " << d.max << "\ntime " << d.time << "\nreference_time "
+                << d.reference_time << "\n";
       return kExitOk;
     }
     if (crack_shape) {
-      analysis::write_key_values(analysis::crack_report(root, time), std::cout);
+      const analysis::CrackReport report = analysis::crack_report(root, time);
+      std::cout << provenance();
+      analysis::write_key_values(report, std::cout);
       return kExitOk;
     }
     if (!parameter.empty()) {
@@ -81,7 +89,7 @@ int main(int argc, char** argv) {
     const auto selection = analysis::select_rows(table, where, after, input);
     const analysis::LineFit f = analysis::fit_columns(table, fit.substr(0, colon), fit.substr(colon + 1), selection,
                                                       input);
-    std::cout << std::setprecision(10) << "slope " << f.slope << "\nslope_stderr " << f.slope_stderr
+    std::cout << provenance() << std::setprecision(10) << "slope " << f.slope << "\nslope_stderr " << f.slope_stderr
               << "\nintercept " << f.intercept << "\npoints " << f.points << "\n";
     return kExitOk;
   });

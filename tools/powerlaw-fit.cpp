@@ -192,7 +192,7 @@ int run(int argc, char** argv) {
   }
   if (format == "text") {
     std::ostringstream text;
-    analysis::write_fit_text(text, report, values);
+    analysis::write_fit_text(text, report, values, provenance_line(run));
     io::write_file_atomically(common.output, text.str());
   } else {
     io::OutputFile out(common.output);

@@ -17,7 +17,6 @@
 
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "core/version.hpp"
 #include "io/header.hpp"
 #include "io/provenance_text.hpp"
 
@@ -388,11 +387,11 @@ FitReport read_fit(const Group& root) {
   return r;
 }
 
-void write_fit_text(std::ostream& out, const FitReport& r, const FitInput& input) {
+void write_fit_text(std::ostream& out, const FitReport& r, const FitInput& input, const std::string& provenance) {
   const auto kv = [&](const std::string& key, const std::string& value) { out << key << ' ' << value << '\n'; };
   const auto kd = [&](const std::string& key, double v) { kv(key, fmt(v)); };
   const auto ki = [&](const std::string& key, std::int64_t v) { kv(key, std::to_string(v)); };
-  out << "# powerlaw-fit " << kVersion << "\n"
+  out << csv_comment(provenance)
       << "# alpha: exponent of the probability density p(x) ~ x^-alpha, x >= xmin. For fragment masses\n"
       << "# F(m) ~ m^-beta (fragments per unit mass): beta = alpha. The CCDF N(>m) and the counts per\n"
       << "# logarithmic bin fall as m^-(alpha-1). Unprefixed keys: the primary estimator. Keys: docs/powerlaw-fit.md\n";

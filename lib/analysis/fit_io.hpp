@@ -58,8 +58,9 @@ void write_fit(io::Group& root, const FitReport& report, const FitInput& input);
 // and log-binned slope. InputError when the group is missing.
 FitReport read_fit(const io::Group& root);
 
-// "key value" lines (docs/powerlaw-fit.md lists every key).
-void write_fit_text(std::ostream& out, const FitReport& report, const FitInput& input);
+// "key value" lines (docs/powerlaw-fit.md lists every key) after '#' lines: `provenance`
+// (frac::provenance_line) first, then what alpha means.
+void write_fit_text(std::ostream& out, const FitReport& report, const FitInput& input, const std::string& provenance);
 // Appends the values of `one` to `pooled` (the sample of several files): sources joined with " + ",
 // counts, masses and cells added, its size appended to input_sizes; the unit and column must agree
 // (InputError otherwise).

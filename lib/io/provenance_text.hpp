@@ -18,7 +18,8 @@ std::string png_with_text(std::string_view png, std::string_view keyword, std::s
 // RuntimeError when there is no <svg> element.
 std::string svg_with_metadata(std::string_view svg, std::string_view text);
 
-// "# text\n": the first line of a CSV table (gnuplot skips it; other readers: grep -v '^#').
+// "# text\n": the first line of a CSV table or of `key value` lines (gnuplot and awk '$1 == "key"' skip it;
+// other readers: grep -v '^#').
 std::string csv_comment(std::string_view text);
 
 // & < > " as entities: for XML element content and attribute values.

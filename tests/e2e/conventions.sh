@@ -2,7 +2,7 @@
 # The conventions every tool promises (README, "Conventions of every tool"), checked tool by tool:
 # --help with an example, --version, a bad option refused with exit 2, -q silences standard error,
 # --config FILE takes effect (the command line winning over it); and the provenance of the outputs
-# without a /provenance group (PNG text chunk, SVG <metadata>, CSV first line, XDMF Information).
+# without a /provenance group (PNG text chunk, SVG <metadata>, CSV and `key value` first line, XDMF Information).
 # Usage: conventions.sh SOURCE_DIR BIN_DIR WORK_DIR CASE [COMMAND ...]
 #   CASE is a tool ("dem-run", "mesh-gen.voronoi"), "provenance", or "every-tool" followed by the
 #   commands the other cases cover (they must be every tool of tools/ and every mesh-gen subcommand).
@@ -229,6 +229,15 @@ EOF
     head -1 hist.csv | grep -qE "^# tool=powerlaw-fit .*inputs=$(attr fragments.h5 /provenance/file_uuid) command=" ||
       fail "hist.csv: first line '$(head -1 hist.csv)'"
     [[ $(sed -n 2p hist.csv) == center,density,count,lower,upper ]] || fail "hist.csv: the header is not the second line"
+    # `key value` text: the provenance as a '#' first line, the keys after it.
+    head -1 fit.txt | grep -qE "^# tool=powerlaw-fit .*inputs=$(attr fragments.h5 /provenance/file_uuid) command=" ||
+      fail "fit.txt: first line '$(head -1 fit.txt)'"
+    "$bin/observables" run.h5 --compare run.h5 > compare.txt
+    check_line "$(head -1 compare.txt | sed -n 's/^# //p')" observables
+    [[ $(awk '$1 == "rms_position_difference" { print $2 }' compare.txt) == 0 ]] || fail "compare.txt: '$(cat compare.txt)'"
+    "$bin/wave-speed" --theory dem --young 4e8 --poisson 0.2 --density 5000 --format text -q > speeds.txt
+    head -1 speeds.txt | grep -qE '^# tool=wave-speed version=[0-9][^ ]* time=[0-9TZ:-]+ command=[^ ]*wave-speed --theory' ||
+      fail "speeds.txt: first line '$(head -1 speeds.txt)'"
     # XDMF: an Information element named provenance.
     "$bin/h5-xdmf" run.h5 -q -o a.xmf
     xmllint --noout a.xmf 2>/dev/null || ! command -v xmllint >/dev/null || fail "a.xmf: not well-formed XML"

@@ -927,9 +927,11 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   EXPECT_EQ(b.spread.logbin.per_input, r.spread.logbin.per_input);
   EXPECT_EQ(b.spread.mle.jackknife_stderr, r.spread.mle.jackknife_stderr);
   EXPECT_EQ(froot.attr_string("unit", "fit/histogram/edges"), "kg");
-  // Text output: key value lines, the primary's alpha unprefixed and beta = alpha stated.
+  // Text output: the provenance line first, then key value lines, the primary's alpha unprefixed and beta = alpha
+  // stated.
   std::ostringstream text;
-  analysis::write_fit_text(text, r, in);
+  analysis::write_fit_text(text, r, in, "tool=powerlaw-fit version=0");
+  EXPECT_EQ(text.str().rfind("# tool=powerlaw-fit version=0\n", 0), 0u);
   EXPECT_NE(text.str().find("\nalpha " ), std::string::npos);
   EXPECT_NE(text.str().find("beta = alpha"), std::string::npos);
   EXPECT_NE(text.str().find("\nn_excluded_min_cells " + std::to_string(singles) + "\n"), std::string::npos);
