@@ -1,5 +1,5 @@
 #pragma once
-// Fragments of a polygon-DEM state (shared/physics/polygon-dem.md §9): the connected components of
+// Fragments of a polygon-DEM state (docs/physics/polygon-dem.md §9): the connected components of
 // the cells through intact beams (contacts do not bind), found by union-find, and per fragment its
 // mass, cell count, centre of mass, velocity of the centre of mass and kinetic energies.
 //

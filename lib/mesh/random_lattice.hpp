@@ -2,7 +2,7 @@
 // The vectorizable random lattice (Moukarzel & Herrmann 1992): one Voronoi site thrown in each cell
 // of a square grid of spacing g, inside a square of side a = disorder * g centred in the cell (or a
 // disc of radius a), cut to a rectangle (cells clipped to the box) or to a disc (whole cells of a
-// square tessellation whose centroid lies within the radius). See shared/physics/polygon-dem.md §1.
+// square tessellation whose centroid lies within the radius). See docs/physics/polygon-dem.md §1.
 //
 // Conventions. Rectangle: box [0, W] x [0, H], g = W / nx, which must equal H / ny within 1e-9
 // relative; cell j nx + i comes from grid cell (i, j). Disc: centred on the origin, g = sqrt(pi R^2 /
