@@ -10,8 +10,8 @@
 # 0.40 × 0.20 m); the charge (500 J into the central cell's neighbours) and the projectile (457 J in one cell)
 # are the paper's. Per run: wall and CPU ns per cell-step over the whole run, and per phase (before break-up:
 # until 10 % of the beams that break have broken; during: to 90 %; after), from dem-run's progress lines
-# (step and steps per second every 5 s); peak memory per cell (max RSS); then contacts and broken beams per cell
-# over time, from the run's observables. Configurations run interleaved, repeat by repeat.
+# (step and steps per second every 5 s); peak memory (max RSS; MB = 10^6 bytes) and per cell; then contacts and
+# broken beams per cell over time, from the run's observables. Configurations run interleaved, repeat by repeat.
 set -euo pipefail
 bin=${1:-build/tools}
 sizes=${SIZES:-"10000 100000"}
@@ -79,7 +79,7 @@ report_job() {
       loop = n > 1 ? at(steps) : wall
       printf "| %s | %d | %s | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f | %.0f | %.2f |\n", name, cells, t, steps,
         loop * 1e9 / (cells * steps), cpu * 1e9 / (cells * steps), ns(0, p[1]), ns(p[1], p[2]), ns(p[2], steps),
-        wall, rss / 1024, rss * 1024 / cells / 1000 }' "$out/elapsed.txt"
+        wall, rss * 1024 / 1e6, rss * 1024 / cells / 1000 }' "$out/elapsed.txt"
 }
 
 echo "dem-run jobs, dt $dt s, $(nproc) cores, $(date -u +%Y-%m-%d)"
