@@ -37,7 +37,7 @@ RES=$W/results.tsv
 # 10^6 rows (plan big / 1M): LAMMPS steps of W1 and W1h, and S of dem-run (runs of S and 2S steps)
 S1M_W1=${S1M_W1:-20}
 S1M_W1H=${S1M_W1H:-200}
-S1M_DEM=${S1M_DEM:-20}
+S1M_DEM=${S1M_DEM:-100}
 THREADS_LIST=${THREADS:-"1 2"}  # the thread counts of each row
 mkdir -p $W/logs $W/tk $W/data
 cd $W || exit 2
