@@ -220,6 +220,8 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
   CrackPath::Tip tip = path.tip(model, integ->q());
   sum.tip_start = tip;
   std::int64_t last_observed = -1;
+  // The clamped rows move (and work on the sheet) until loading.ramp_time.
+  const double grips_stop = sc.ramp_time > 0 ? sc.ramp_time : 0.0;
   const dynamics::RunawayGuard runaway(integ->q(), n, "node");
   auto observe = [&](std::int64_t step) {
     last_observed = step;
@@ -235,6 +237,12 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
     sum.tip_speed = fit.slope();
     sum.energy_end = ke + pe;
     if (step == 0) sum.energy_start = ke + pe;
+    if (!sum.energy_conserved_set && integ->t() >= grips_stop) {
+      sum.energy_conserved_set = true;
+      sum.energy_conserved = ke + pe;
+      sum.energy_conserved_time = integ->t();
+      sum.drive_energy_conserved = sum.drive_energy;
+    }
     if (!writer) return;
     const double t = integ->t();
     writer->observe(k_kinetic, step, t, ke, "J");
@@ -282,6 +290,10 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
     a.value("drive_energy", sum.drive_energy);
     a.value("energy_start", sum.energy_start);
     a.value("energy_end", sum.energy_end);
+    a.value("energy_conserved_set", sum.energy_conserved_set);
+    a.value("energy_conserved", sum.energy_conserved);
+    a.value("energy_conserved_time", sum.energy_conserved_time);
+    a.value("drive_energy_conserved", sum.drive_energy_conserved);
     a.value("tip_speed", sum.tip_speed);
     for (auto [name, t] : {std::pair{"tip", &tip}, std::pair{"tip_start", &sum.tip_start}}) {
       StateArchive::Scope tip_scope(a, name);

@@ -42,6 +42,10 @@ struct RubberSummary {
   CrackPath::Tip tip_start, tip;    // crack tip at the start and at the end
   double tip_speed = 0;             // m/s, last fitted speed of λx × reference tip x over output.speed_window
   double energy_start = 0, energy_end = 0;  // J, kinetic + potential
+  // The energy when the clamped rows stop doing work (t = 0, or the first observation from loading.ramp_time
+  // on), and the knife's work by then: undamped, energy_end - energy_conserved equals the knife's work since.
+  bool energy_conserved_set = false;
+  double energy_conserved = 0, energy_conserved_time = 0, drive_energy_conserved = 0;
   double wall_seconds = 0;
   double loop_seconds = 0;          // wall time of the time loop alone (steps, events, observations)
   long long loop_steps = 0;         // steps of that loop (fewer than `steps` in a run continued from a checkpoint)

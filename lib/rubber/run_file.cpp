@@ -63,12 +63,18 @@ std::string summary_line(const RubberSummary& s, const RubberSystem& system, con
 }
 
 std::optional<std::string> energy_warning(const RubberSummary& s, const RubberScene& scene) {
+  if (scene.damping || !s.energy_conserved_set) return std::nullopt;
+  const double knife = s.drive_energy - s.drive_energy_conserved;
   const double change =
-      std::abs(s.energy_end - s.energy_start - s.drive_energy) / std::max(std::abs(s.energy_start), 1e-300);
-  if (scene.damping || !(change > 0.01)) return std::nullopt;
+      std::abs(s.energy_end - s.energy_conserved - knife) / std::max(std::abs(s.energy_conserved), 1e-300);
+  if (!(change > 0.01)) return std::nullopt;
   std::ostringstream m;
-  m << "the total energy changed by " << 100 * change
-    << "% without damping: the time step is too large for this scene (lower integrator.safety)";
+  m << "the total energy changed by " << 100 * change << "% without damping";
+  if (s.energy_conserved_time > 0) m << " since the clamped rows stopped (t = " << s.energy_conserved_time << " s)";
+  m << ": the time step is too large for this scene (lower integrator.safety)";
+  if (s.irreversible > 0)
+    m << ", or irreversible breaking removed bonds (" << s.irreversible
+      << ") before their cut-off had faded (raise breaking.extra_widths)";
   return m.str();
 }
 

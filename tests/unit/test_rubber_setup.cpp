@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -12,6 +14,7 @@
 #include "core/scene.hpp"
 #include "mesh/triangular_lattice.hpp"
 #include "rubber/run.hpp"
+#include "rubber/run_file.hpp"
 #include "rubber/setup.hpp"
 
 namespace {
@@ -191,21 +194,46 @@ TEST(RubberSetup, RampMovesTheClampedRowsToTheStretch) {
   EXPECT_THROW(setup_for(std::string(kStretch) + "ramp_time = 1e-4\n[boundary]\nclamp_rows = 0\n", m), UsageError);
 }
 
-TEST(RubberSetup, ShortRunConservesEnergyAndKeepsTheTip) {
+// A run of the stretch scene plus `extra` on a 40 × 16 strip with clamped columns, observed every 5 steps.
+std::pair<RubberSetup, RubberSummary> short_run(const std::string& extra) {
   const auto m = strip(40, 16);
-  const RubberSetup su = setup_for(std::string(kStretch) +
-                                       "[crack]\nseed_length = 0.008\n[boundary]\nclamp_columns = 2\n"
-                                       "[stop]\nt_max = 2.5e-5\n[output]\nobserve_every = 5\n",
-                                   m);
+  RubberSetup su =
+      setup_for(std::string(kStretch) + extra + "[boundary]\nclamp_columns = 2\n[output]\nobserve_every = 5\n", m);
   RubberSystem sys = build_rubber(m, su, 1, 1);
   Progress quiet("test", true);
-  const RubberSummary s = run_rubber(sys, su, nullptr, quiet);
+  RubberSummary s = run_rubber(sys, su, nullptr, quiet);
+  return {std::move(su), std::move(s)};
+}
+
+TEST(RubberSetup, ShortRunConservesEnergyAndKeepsTheTip) {
+  const auto [su, s] = short_run("[crack]\nseed_length = 0.008\n[stop]\nt_max = 2.5e-5\n");
   EXPECT_EQ(s.stop_reason, "stop.t_max reached");
   EXPECT_NEAR(s.time, 2.5e-5, 0.51 * su.dt);
   EXPECT_NEAR(s.energy_end, s.energy_start, 1e-4 * std::abs(s.energy_start));
   EXPECT_TRUE(s.tip.found);
   EXPECT_GE(s.tip.reference_x, s.tip_start.reference_x);
   EXPECT_GT(s.ns_per_node_step(), 0);
+}
+
+// While loading.ramp_time moves the clamped rows they work on the sheet; the undamped run conserves its energy
+// only from then on, and the energy check starts there (it warned of a too-large time step before).
+TEST(RubberSetup, EnergyCheckStartsWhenTheClampedRowsStop) {
+  const auto [su, s] = short_run("ramp_time = 1e-5\nramp_from_y = 2.9\n[stop]\nt_max = 3e-5\n");
+  ASSERT_TRUE(s.energy_conserved_set);
+  EXPECT_GE(s.energy_conserved_time, 1e-5);
+  EXPECT_LT(s.energy_conserved_time, 1e-5 + 5.01 * su.dt);  // the first observation from the ramp's end on
+  // While they raise λy from 2.9 to 3 (and when they stop: their rows' kinetic energy goes), the clamped rows
+  // change the sheet's energy by more than the check's 1 %.
+  EXPECT_GT(std::abs(s.energy_end - s.energy_start), 0.01 * std::abs(s.energy_start))
+      << s.energy_start << " -> " << s.energy_end;
+  EXPECT_NEAR(s.energy_end, s.energy_conserved, 1e-4 * std::abs(s.energy_conserved));
+  EXPECT_FALSE(energy_warning(s, su.scene).has_value());
+  // The same summary with the energy changed by 2 % after the grips stopped: the check speaks.
+  RubberSummary drifted = s;
+  drifted.energy_end = 1.02 * s.energy_conserved;
+  const auto warning = energy_warning(drifted, su.scene);
+  ASSERT_TRUE(warning.has_value());
+  EXPECT_NE(warning->find("since the clamped rows stopped"), std::string::npos) << *warning;
 }
 
 }  // namespace
