@@ -174,6 +174,7 @@ Vec2 write_synthetic_run(const std::string& path, SyntheticRun s, bool cells = f
         const Vec2 e = p.shear ? perp : dir;
         u = 0.5 * p.amplitude * (gauss(sd - c * t, w) + gauss(sd + c * t, w)) * e;
         v = 0.5 * p.amplitude * (-c * gauss_slope(sd - c * t, w) + c * gauss_slope(sd + c * t, w)) * e;
+        if (t == 0) v = Vec2(0, 0);  // released from rest: exactly, whatever FMA makes of the two terms
       }
       x[i] = base[i] + u;
       f.position.push_back(x[i].x());
