@@ -17,7 +17,6 @@
 #include "io/atomic_file.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
-#include "io/provenance_text.hpp"
 #include "io/speeds_io.hpp"
 
 namespace po = boost::program_options;
@@ -211,7 +210,7 @@ int body(int argc, char** argv) {
   }
 
   if (format == "text") {
-    io::write_file_atomically(common.output, io::csv_comment(provenance_line(run)) + io::speeds_text(record));
+    io::write_file_atomically(common.output, io::speeds_text(record, provenance_line(run)));
   } else {
     io::OutputFile out(common.output);
     io::write_header(out.root(), "speeds", run, out.uuid());

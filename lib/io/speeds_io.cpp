@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/provenance_text.hpp"
 
 namespace frac::io {
 namespace {
@@ -236,8 +237,9 @@ SpeedsRecord read_speeds(const Group& root) {
   return r;
 }
 
-std::string speeds_text(const SpeedsRecord& r) {
+std::string speeds_text(const SpeedsRecord& r, const std::string& provenance) {
   std::ostringstream out;
+  out << csv_comment(provenance);
   out.precision(10);
   const auto num = [&](const std::string& key, double v) { out << key << " " << v << "\n"; };
   const auto txt = [&](const std::string& key, const std::string& v) {

@@ -86,7 +86,8 @@ struct SpeedsRecord {
 void write_speeds(Group& root, const SpeedsRecord& r);
 // InputError naming the dataset when /speeds is missing or malformed.
 SpeedsRecord read_speeds(const Group& root);
-// "key value" lines (values to 10 significant digits, text values verbatim), for --format text.
-std::string speeds_text(const SpeedsRecord& r);
+// "key value" lines (values to 10 significant digits, text values verbatim), for --format text, after
+// `provenance` (frac::provenance_line) as a '#' line.
+std::string speeds_text(const SpeedsRecord& r, const std::string& provenance);
 
 }  // namespace frac::io

@@ -695,7 +695,7 @@ TEST(WaveSpeedReport, ComparesWithMooneyRivlinUsingTheRunParameters) {
   EXPECT_EQ(rr.bond_length, r.bond_length);
   EXPECT_EQ(rr.parameters.size(), r.parameters.size());
   EXPECT_EQ(back.attr_string("unit", "speeds/measured/speed"), "m s-1");
-  const std::string text = io::speeds_text(rr);
+  const std::string text = io::speeds_text(rr, "tool=wave-speed");
   EXPECT_NE(text.find("measured.longitudinal.x.speed "), std::string::npos) << text;
   EXPECT_NE(text.find("measured.longitudinal.x.deviation "), std::string::npos) << text;
   EXPECT_NE(text.find("lattice.regime mooney-rivlin"), std::string::npos) << text;
