@@ -39,8 +39,8 @@ for command in "${commands[@]}"; do
       grep -qx -- "${BASH_REMATCH[1]}" <<<"$make_targets" || fail "README names a make target that does not exist: ${BASH_REMATCH[1]}"
     fi
     checked=$((checked + 1)); echo "checked (needs SLURM, not run here): $command"; continue
-  elif [[ $command =~ ^bash\ (bench/[a-z_-]+\.sh) ]]; then
-    script=${BASH_REMATCH[1]}
+  elif [[ $command =~ ^([A-Z0-9_]+=[^\ ]+\ )*bash\ (bench/[a-z_/-]+\.sh) ]]; then
+    script=${BASH_REMATCH[2]}
     bash -n "$script" || fail "README names a benchmark script that does not parse: $script"
     checked=$((checked + 1)); echo "checked (not run here): $command"; continue
   fi
