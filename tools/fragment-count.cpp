@@ -10,6 +10,7 @@
 #include "analysis/fragments.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
@@ -90,6 +91,7 @@ int run(int argc, const char* const* argv) {
   if (o.min_cells < 1) throw UsageError("--min-cells: must be at least 1, got " + std::to_string(o.min_cells));
   if (!(o.bins_per_decade > 0 && o.bins_per_decade <= 1000))
     throw UsageError("--bins-per-decade: must be in (0, 1000], got " + (std::ostringstream() << o.bins_per_decade).str());
+  check_file_roles({{"RUN", o.input}, {"--config", o.common.config}}, {{"-o", o.common.output}});
 
   const io::Group root = io::open_input(o.input);
   io::check_header(root, {"run"});

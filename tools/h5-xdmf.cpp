@@ -5,6 +5,7 @@
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
 #include "io/hdf5.hpp"
@@ -61,7 +62,7 @@ int run(int argc, char** argv) {
   else if (flavour == "xdmf2") opt.flavour = io::XdmfFlavour::xdmf2;
   else throw UsageError("--flavour: unknown value '" + flavour + "' (xdmf3 or xdmf2)");
   if (output.empty()) output = std::filesystem::path(input).replace_extension(".xmf").string();
-  if (output == input) throw UsageError("--output: '" + output + "' is the input file");
+  check_file_roles({{"FILE", input}, {"--fragments", fragments}, {"--config", common.config}}, {{"-o", output}});
 
   const io::Group root = io::open_input(input);
   ToolRun run = start_run("h5-xdmf", cli::command_line(argc, argv));

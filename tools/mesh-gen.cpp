@@ -6,6 +6,7 @@
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
@@ -59,8 +60,10 @@ int voronoi(int argc, const char* const* argv, const std::string& command_line) 
        "drop beams whose shared side is below this fraction of the spacing");
   cli::add_common(desc, common, cli::kOutput | cli::kSeed | cli::kQuiet | cli::kConfig);
   const auto vm = cli::parse(argc, argv, spec, desc);
+  check_file_roles({{"--config", common.config}}, {{"-o", common.output}});
 
   opt.seed = common.seed;
+  mesh::refuse_ignored_options(opt, cli::given_options(vm));
   if (opt.shape == "rect") {
     const auto wh = cli::parse_pair_double(size, "--size");
     const auto n = cli::parse_pair_int(cells, "--cells");
@@ -100,6 +103,7 @@ int triangular(int argc, const char* const* argv, const std::string& command_lin
       ("notch", po::value(&opt.notch)->default_value(0.0), "length in m of the cut from the left edge (0: none)");
   cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kConfig);
   const auto vm = cli::parse(argc, argv, spec, desc);
+  check_file_roles({{"--config", common.config}}, {{"-o", common.output}});
 
   const auto n = cli::parse_pair_int(nodes, "--nodes");
   opt.nx = n[0], opt.ny = n[1];

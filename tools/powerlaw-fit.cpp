@@ -12,6 +12,7 @@
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "analysis/fit_io.hpp"
 #include "io/header.hpp"
@@ -130,6 +131,9 @@ int run(int argc, char** argv) {
     throw UsageError("--input-format: expected auto, hdf5 or text, got '" + input_format + "'");
   check_one_of(format, {"hdf5", "text"}, "--format");
   analysis::check_fit_options(opt);  // before any input is read
+  std::vector<FileRole> input_roles{{"--config", common.config}};
+  for (const std::string& input : inputs) input_roles.push_back({"FILE", input});
+  check_file_roles(input_roles, {{"-o", common.output}, {"--histogram-csv", histogram_csv}});
   if (ks == "two-sided") opt.scan.ks = analysis::KsConvention::two_sided;
   else if (ks == "powerlaw-r") opt.scan.ks = analysis::KsConvention::powerlaw_r;
   else throw UsageError("--ks: expected two-sided or powerlaw-r, got '" + ks + "'");
@@ -155,7 +159,9 @@ int run(int argc, char** argv) {
 
   // Input: fragments files, or columns of numbers; several are pooled.
   analysis::FitInput values;
-  for (const std::string& input : inputs) {
+  analysis::DistinctInputs distinct(inputs);
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    const std::string& input = inputs[k];
     const bool hdf5 = input_format == "hdf5" || (input_format == "auto" && analysis::input_is_hdf5(input));
     analysis::FitInput one;
     if (hdf5) {
@@ -168,6 +174,7 @@ int run(int argc, char** argv) {
         if (!(v >= 0) || v != std::floor(v)) throw UsageError("--min-cells: expected 'file' or a whole number >= 0");
         min_cells = static_cast<std::int64_t>(v);
       }
+      distinct.add(k, root);
       one = analysis::read_fragment_values(root, column, min_cells);
       io::add_input(run, root);
     } else {

@@ -2,12 +2,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
 #include "io/hdf5.hpp"
@@ -118,6 +120,8 @@ int run(int argc, char** argv) {
   po::positional_options_description positional;
   positional.add("input", 1);
   const auto vm = cli::parse(argc, argv, spec, desc, positional);
+  const std::vector<FileRole> inputs{{"RUN", input}, {"--fragments", fragments}, {"--config", common.config}};
+  if (!all_frames) check_file_roles(inputs, {{"-o", common.output}});
 
   const int choices = static_cast<int>(vm.count("frame")) + static_cast<int>(vm.count("time")) + (all_frames ? 1 : 0);
   if (choices > 1) throw UsageError("--frame, --time and --all-frames: give one of them");
@@ -130,7 +134,9 @@ int run(int argc, char** argv) {
   const render::ImageFormat fmt = vm.count("format") ? render::format_from_text(format)
                                   : common.output == "-" ? render::ImageFormat::png
                                                          : render::format_from_name(common.output);
-  if (vm.count("format") && common.output != "-" && render::format_from_name(common.output) != fmt)
+  // (a name without an extension, such as /dev/null, takes --format's)
+  if (vm.count("format") && std::filesystem::path(common.output).has_extension() &&
+      render::format_from_name(common.output) != fmt)
     throw UsageError("--format " + format + " does not match the extension of '" + common.output + "'");
   if (all_frames && common.output == "-") throw UsageError("--all-frames: write to files (-o picture-%04d.png), not to standard output");
   if (all_frames) numbered(common.output, 0);  // checks the pattern before any work
@@ -193,9 +199,11 @@ int run(int argc, char** argv) {
   std::vector<long long> frames;
   for (long long k = 0; k < static_cast<long long>(picture.frames()); k += every) frames.push_back(k);
   picture.fix_across(frames);  // one view and one colour range for the whole sequence
-  for (std::size_t s = 0; s < frames.size(); ++s)
+  for (std::size_t s = 0; s < frames.size(); ++s) {
+    check_file_roles(inputs, {{"-o", numbered(common.output, static_cast<long long>(s))}});
     render::write_figure(picture.figure(frames[s]), size, fmt, numbered(common.output, static_cast<long long>(s)),
                          provenance);
+  }
   say("wrote " + std::to_string(frames.size()) + " pictures, " + numbered(common.output, 0) + " to " +
       numbered(common.output, static_cast<long long>(frames.size()) - 1));
   return kExitOk;

@@ -13,6 +13,7 @@
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "io/atomic_file.hpp"
 #include "io/header.hpp"
@@ -126,6 +127,7 @@ int body(int argc, char** argv) {
   const auto vm = cli::parse(argc, argv, spec, desc, positional);
 
   check_one_of(format, {"hdf5", "text"}, "--format");
+  check_file_roles({{"RUN", input}, {"--config", common.config}}, {{"-o", common.output}});
   const bool have_run = vm.count("input") > 0;
   if (!have_run && !vm.count("theory"))
     throw UsageError("give a run file (or - for standard input), or --theory for the prediction alone");

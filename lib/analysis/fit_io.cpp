@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/file_roles.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
 #include "io/provenance_text.hpp"
@@ -57,12 +58,24 @@ const char* ks_name(analysis::KsConvention k) {
 
 }  // namespace
 
-std::vector<double> read_number_column(std::istream& in, const std::string& name) {
+std::vector<double> read_number_column(std::istream& in, const std::string& name, std::size_t max_values) {
+  constexpr std::size_t kMaxLine = 4096;
+  constexpr std::int64_t kMaxBadLines = 1000;
   std::vector<double> out;
   std::string line, first_bad;
   std::int64_t lineno = 0, bad = 0, first_bad_line = 0;
-  while (std::getline(in, line)) {
+  std::vector<char> buffer(kMaxLine + 1);
+  while (bad < kMaxBadLines) {
+    in.getline(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got == 0 && in.eof()) break;
     ++lineno;
+    if (in.fail() && !in.eof())
+      throw InputError(name + ": line " + std::to_string(lineno) + " is longer than " + std::to_string(kMaxLine) +
+                       " characters: not a column of numbers");
+    line.assign(buffer.data(), in.eof() ? got : got - 1);
+    if (line.find('\0') != std::string::npos)
+      throw InputError(name + ": line " + std::to_string(lineno) + " holds a NUL byte: not a column of numbers");
     const auto hash = line.find('#');
     const std::string text = trim(hash == std::string::npos ? line : line.substr(0, hash));
     if (text.empty()) continue;
@@ -72,13 +85,16 @@ std::vector<double> read_number_column(std::istream& in, const std::string& name
       if (bad++ == 0) first_bad_line = lineno, first_bad = text;
       continue;
     }
+    if (out.size() >= max_values)
+      throw InputError(name + ": more than " + std::to_string(max_values) + " values (at most that many are read)");
     out.push_back(v);
+    if (in.eof()) break;
   }
   if (in.bad()) throw InputError(name + ": read error");
   if (bad)
-    throw InputError(name + ": " + std::to_string(bad) + " line" + (bad == 1 ? " is" : "s are") +
-                     " not a single number (first: line " + std::to_string(first_bad_line) + ": '" +
-                     first_bad.substr(0, 60) + "')");
+    throw InputError(name + ": " + (bad == kMaxBadLines ? "at least " : "") + std::to_string(bad) + " line" +
+                     (bad == 1 ? " is" : "s are") + " not a single number (first: line " +
+                     std::to_string(first_bad_line) + ": '" + first_bad.substr(0, 60) + "')");
   return out;
 }
 
@@ -469,6 +485,24 @@ void write_fit_text(std::ostream& out, const FitReport& r, const FitInput& input
     kd(k + "_input_stderr", e->stderr_mean);
     kd(k + "_jackknife_stderr", e->jackknife_stderr);
   }
+}
+
+DistinctInputs::DistinctInputs(const std::vector<std::string>& paths) : paths_(paths) {
+  for (std::size_t b = 1; b < paths_.size(); ++b)
+    for (std::size_t a = 0; a < b; ++a)
+      if (same_file(paths_[a], paths_[b]))
+        throw UsageError("inputs '" + paths_[a] + "' and '" + paths_[b] +
+                         "' are one file: pooled twice, its values would count twice");
+}
+
+void DistinctInputs::add(std::size_t k, const io::Group& root) {
+  const std::string uuid = io::read_provenance(root).file_uuid;
+  if (uuid.empty()) return;
+  for (const auto& [seen, a] : uuids_)
+    if (seen == uuid)
+      throw UsageError("inputs '" + paths_[a] + "' and '" + paths_.at(k) + "' are copies of one file (the same " +
+                       "/provenance file_uuid " + uuid + "): pooled twice, its values would count twice");
+  uuids_.emplace_back(uuid, k);
 }
 
 void pool_into(FitInput& pooled, const FitInput& one) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/powerlaw.hpp"
@@ -36,8 +37,12 @@ struct FitInput {
 
 // One number a line; blank lines and '#' comments skipped. InputError naming `name`, the number of bad lines
 // and the first of them, for a line that is not a single number. NaN and infinities are read as such
-// (validate_values refuses them, with counts).
-std::vector<double> read_number_column(std::istream& in, const std::string& name);
+// (validate_values refuses them, with counts). Bounded, so that a stream that is no column of numbers
+// (/dev/zero, `yes`, a binary file) is refused instead of read until time or memory runs out: InputError for
+// a line over 4096 characters or with a NUL byte, after 1000 bad lines, and past `max_values` values.
+inline constexpr std::size_t kMaxTextValues = std::size_t{1} << 27;
+std::vector<double> read_number_column(std::istream& in, const std::string& name,
+                                       std::size_t max_values = kMaxTextValues);
 // A text file, or "-" for standard input.
 FitInput read_text_values(const std::string& path);
 
@@ -61,6 +66,20 @@ FitReport read_fit(const io::Group& root);
 // "key value" lines (docs/powerlaw-fit.md lists every key) after '#' lines: `provenance`
 // (frac::provenance_line) first, then what alpha means.
 void write_fit_text(std::ostream& out, const FitReport& report, const FitInput& input, const std::string& provenance);
+// powerlaw-fit's inputs, each pooled once: pooling a file twice would count its values twice. UsageError naming
+// both arguments when two name one file (the same device and inode: a.h5 and ./a.h5, a link, '-' and the file
+// standard input reads) or two fragments files are copies of one (the same /provenance file_uuid).
+class DistinctInputs {
+ public:
+  explicit DistinctInputs(const std::vector<std::string>& paths);  // checks the paths
+  // Input k (paths[k]), opened as `root`: checks its uuid against the inputs added before.
+  void add(std::size_t k, const io::Group& root);
+
+ private:
+  std::vector<std::string> paths_;
+  std::vector<std::pair<std::string, std::size_t>> uuids_;  // uuid, input
+};
+
 // Appends the values of `one` to `pooled` (the sample of several files): sources joined with " + ",
 // counts, masses and cells added, its size appended to input_sizes; the unit and column must agree
 // (InputError otherwise).

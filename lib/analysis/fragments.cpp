@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <numeric>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace frac::analysis {
 
@@ -101,7 +103,7 @@ void check_state(const CellState& s) {
   check_beams(s.beam, s.intact, n);
 }
 
-Fragments find_fragments(const CellState& s) {
+Fragments find_fragments(const CellState& s) try {
   check_state(s);
   const std::size_t n = s.mass.size();
   const std::size_t b = s.intact.size();
@@ -192,6 +194,8 @@ Fragments find_fragments(const CellState& s) {
     out.kinetic_energy_rotational[id] += 0.5 * (s.mass[i] * (dx * dx + dy * dy) + s.inertia[i] * w * w);
   }
   return out;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the fragments of " + std::to_string(s.mass.size()) + " cells");
 }
 
 FragmentCount FragmentCounter::operator()(std::span<const double> mass, std::span<const std::int64_t> beam,

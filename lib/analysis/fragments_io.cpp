@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 #include "io/atomic_file.hpp"
 #include "io/fragment_labels.hpp"
 #include "io/mesh_io.hpp"
@@ -32,6 +33,24 @@ std::vector<T> frame_of(const Group& parent, std::string_view name, std::int64_t
   auto v = read_series_frame<T>(parent, name, frame);
   require_count(parent.group(name), "value", v.size(), want, what);
   return v;
+}
+
+// Frames as a run writes them: steps >= 0 and times finite and >= 0, neither decreasing (--time picks a frame
+// by them, and the time series and the fragments file carry them).
+void check_frame_list(const Group& cells, const RunInfo& info) {
+  const Group series = cells.group("position");
+  for (std::size_t k = 0; k < info.step.size(); ++k) {
+    const std::string frame = ": frame " + std::to_string(k) + ": ";
+    const double t = info.time[k];
+    if (!(std::isfinite(t) && t >= 0 && (k == 0 || t >= info.time[k - 1])))
+      throw InputError(series.where("time") + frame + "t = " + format_value(t) + " s" +
+                       (k ? " after " + format_value(info.time[k - 1]) + " s" : "") +
+                       " (frame times must be finite, >= 0 and non-decreasing)");
+    if (!(info.step[k] >= 0 && (k == 0 || info.step[k] >= info.step[k - 1])))
+      throw InputError(series.where("step") + frame + "step " + std::to_string(info.step[k]) +
+                       (k ? " after " + std::to_string(info.step[k - 1]) : "") +
+                       " (frame steps must be >= 0 and non-decreasing)");
+  }
 }
 
 // A contiguous, uncompressed float64 dataset. Per-fragment columns are written this way: deflate
@@ -62,6 +81,7 @@ RunInfo read_dem_run_info(const Group& root) {
                      "'; fragments are counted in polygon-DEM runs (model 'dem')");
   RunInfo info = read_run_info(root);
   const Group cells = root.group(kCells);
+  check_frame_list(cells, info);
   require_count(cells, "inertia", info.inertia.size(), info.mass.size(), "one per cell, as mass");
   const mesh::CellMesh mesh = read_cell_mesh(root);  // the run's mesh holds the invariants of mesh-gen check
   require_count(cells, "mass", info.mass.size(), mesh.cells(), "one per cell of the mesh");
@@ -80,8 +100,14 @@ std::vector<std::int64_t> read_beam_pairs(const Group& root, std::size_t cells) 
 }
 
 std::vector<std::uint8_t> read_beam_intact(const Group& root, std::int64_t frame, std::size_t beams) {
-  return frame_of<std::uint8_t>(root.group(kBeamSeries), "intact", frame, beams,
-                                "one per row of /connectivity/beams/pairs");
+  const Group series = root.group(kBeamSeries);
+  auto intact = frame_of<std::uint8_t>(series, "intact", frame, beams, "one per row of /connectivity/beams/pairs");
+  // (any other value would count as intact and pass for a run's state)
+  for (std::size_t k = 0; k < intact.size(); ++k)
+    if (intact[k] > 1)
+      throw InputError(series.where("intact/value") + ": frame " + std::to_string(frame) + ": beam " +
+                       std::to_string(k) + ": intact flag " + std::to_string(intact[k]) + ", expected 0 or 1");
+  return intact;
 }
 
 FragmentInput read_fragment_input(const Group& root, const RunInfo& info, std::int64_t frame) {

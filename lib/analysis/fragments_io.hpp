@@ -34,11 +34,12 @@ struct FragmentInput {
 };
 
 // The run's static data and frame list; InputError unless `root` is a DEM run (model "dem") whose
-// mass and inertia agree in length.
+// mass and inertia agree in length and whose frames have steps >= 0 and finite times >= 0, neither decreasing.
 io::RunInfo read_dem_run_info(const io::Group& root);
 // /connectivity/beams/pairs as [2B], checked to name cells 0..cells-1.
 std::vector<std::int64_t> read_beam_pairs(const io::Group& root, std::size_t cells);
-// Frame `frame` (0 <= frame < frames) of /connectivity/beams/trajectory/intact, checked to hold `beams` flags.
+// Frame `frame` (0 <= frame < frames) of /connectivity/beams/trajectory/intact, checked to hold `beams` flags,
+// each 0 or 1.
 std::vector<std::uint8_t> read_beam_intact(const io::Group& root, std::int64_t frame, std::size_t beams);
 // Everything for frame `frame` (0 <= frame < info.step.size()), sizes checked against the masses.
 FragmentInput read_fragment_input(const io::Group& root, const io::RunInfo& info, std::int64_t frame);

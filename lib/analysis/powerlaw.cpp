@@ -1,10 +1,12 @@
 #include "analysis/powerlaw.hpp"
 
 #include <cmath>
+#include <new>
 #include <sstream>
 
 #include "core/cli.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/option_check.hpp"
 
 namespace frac::analysis {
@@ -46,7 +48,7 @@ void check_fit_options(const FitOptions& opt) {
     throw UsageError("--logbin-min must be below --logbin-max");
 }
 
-FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, const std::string& what) {
+FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, const std::string& what) try {
   check_fit_options(opt);
 
   validate_values(values, what);
@@ -99,6 +101,8 @@ FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, co
   r.logbin_range.fit_max = opt.logbin_max;
   r.logbin = fit_log_slope(r.histogram, r.logbin_range);
   return r;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the power-law fit of " + std::to_string(values.size()) + " values");
 }
 
 std::string summary_line(const FitReport& r) {

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <sstream>
 
 #include <Eigen/Dense>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "io/mesh_io.hpp"
 #include "io/run_io.hpp"
 #include "io/series.hpp"
@@ -196,7 +198,7 @@ double first_peak(std::span<const double> time, std::span<const double> signal, 
   return time[k] + std::clamp(shift, a, c);
 }
 
-WaveMeasurement measure_wave_speeds(const io::Group& run, const FrontOptions& opt) {
+WaveMeasurement measure_wave_speeds(const io::Group& run, const FrontOptions& opt) try {
   // ---- options ----
   if (opt.directions.empty()) throw UsageError("--direction: no propagation direction given");
   if (!(opt.threshold > 0 && opt.threshold < 1))
@@ -502,6 +504,8 @@ WaveMeasurement measure_wave_speeds(const io::Group& run, const FrontOptions& op
     out.fronts.push_back(std::move(m));
   }
   return out;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the wave-speed measurement of " + run.file());
 }
 
 }  // namespace frac::analysis

@@ -1,19 +1,25 @@
 #include "core/cli.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <exception>
 #include <iostream>
 #include <sstream>
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/signals.hpp"
+#include "core/text_file.hpp"
 #include "core/version.hpp"
 
 namespace frac::cli {
@@ -82,22 +88,45 @@ void check_values(const po::parsed_options& parsed, const po::options_descriptio
   }
 }
 
+// The text of a --config file: a regular file (or a pipe, as from <(...)) of text (core/text_file). A
+// directory reads as empty and a device as whatever it gives, which would pass for a file that sets nothing.
+std::string read_config_text(const std::string& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0)
+    throw UsageError("--config: cannot read '" + path + "' (" + std::strerror(errno) + ")");
+  if (S_ISDIR(st.st_mode)) throw UsageError("--config " + path + ": is a directory, not a file of 'key = value' lines");
+  if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+    throw UsageError("--config " + path + ": not a regular file of 'key = value' lines");
+  return read_text_file(path, "the --config file");
+}
+
+// The scene keys of a parsed --config file, each once; UsageError for a key that is no option and no
+// scene key, a repeated scene key (Boost refuses a repeated option) and 'config' itself (it would be ignored).
+std::vector<std::pair<std::string, std::string>> config_scene_keys(const po::parsed_options& parsed,
+                                                                   const std::string& path) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const auto& o : parsed.options) {
+    if (o.string_key == "config")
+      throw UsageError("--config " + path + ": 'config' cannot be set inside a config file (give one --config)");
+    if (!o.unregistered) continue;
+    if (o.string_key.find('.') == std::string::npos)
+      throw UsageError("--config " + path + ": unknown option '" + o.string_key + "'");
+    for (const auto& [key, value] : keys)
+      if (key == o.string_key) throw UsageError("--config " + path + ": key '" + key + "' is given twice");
+    keys.emplace_back(o.string_key, o.value.empty() ? std::string() : o.value.front());
+  }
+  return keys;
+}
+
 // Stores the options of a --config file in vm; its scene keys go to the front of `scene_overrides`
 // (when given; else they are unknown options).
 void store_config(const std::string& path, po::options_description& desc, po::variables_map& vm,
                   std::vector<std::pair<std::string, std::string>>* scene_overrides) {
-  std::ifstream in(path);
-  if (!in) throw UsageError("--config: cannot read '" + path + "'");
+  std::istringstream in(read_config_text(path));
   try {
     const auto parsed = po::parse_config_file(in, desc, scene_overrides != nullptr);
     check_values(parsed, desc, "--config " + path + ": ");
-    std::vector<std::pair<std::string, std::string>> scene_keys;
-    for (const auto& o : parsed.options) {
-      if (!o.unregistered) continue;
-      if (o.string_key.find('.') == std::string::npos)
-        throw UsageError("--config " + path + ": unknown option '" + o.string_key + "'");
-      scene_keys.emplace_back(o.string_key, o.value.empty() ? std::string() : o.value.front());
-    }
+    const auto scene_keys = config_scene_keys(parsed, path);
     po::store(parsed, vm);  // skips the unregistered scene keys; keeps what the command line set
     if (scene_overrides) scene_overrides->insert(scene_overrides->begin(), scene_keys.begin(), scene_keys.end());
   } catch (const po::error& e) {
@@ -164,6 +193,7 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
 std::vector<const char*> split_overrides(int argc, const char* const* argv,
                                          std::vector<std::pair<std::string, std::string>>& overrides) {
   std::vector<const char*> rest;
+  const std::size_t first = overrides.size();
   for (int k = 0; k < argc; ++k) {
     const std::string arg = argv[k];
     const bool dotted = k > 0 && arg.rfind("--", 0) == 0 && arg.find('.') != std::string::npos &&
@@ -173,17 +203,53 @@ std::vector<const char*> split_overrides(int argc, const char* const* argv,
       continue;
     }
     const auto eq = arg.find('=');
+    std::pair<std::string, std::string> o;
     if (eq != std::string::npos) {
-      overrides.emplace_back(arg.substr(2, eq - 2), arg.substr(eq + 1));
+      o = {arg.substr(2, eq - 2), arg.substr(eq + 1)};
     } else {
       if (k + 1 >= argc) throw UsageError(arg + ": needs a value");
-      overrides.emplace_back(arg.substr(2), argv[++k]);
+      o = {arg.substr(2), argv[++k]};
     }
+    // (a repeated key would silently take its last value)
+    for (auto it = overrides.begin() + static_cast<std::ptrdiff_t>(first); it != overrides.end(); ++it)
+      if (it->first == o.first)
+        throw UsageError("--" + o.first + ": given twice on the command line ('" + it->second + "', then '" +
+                         o.second + "')");
+    overrides.push_back(std::move(o));
   }
   return rest;
 }
 
+namespace {
+
+const std::string* g_tool = nullptr;
+
+// An exception that leaves a parallel region (OpenMP ends the program): the message and exit 1 all the same,
+// after the cleanup hooks (the temporaries removed), rather than an abort.
+[[noreturn]] void on_terminate() {
+  std::string what = "internal error (an exception in a thread)";
+  try {
+    if (const std::exception_ptr e = std::current_exception()) std::rethrow_exception(e);
+  } catch (const std::bad_alloc&) {
+    what = out_of_memory().what();
+  } catch (const std::exception& e) {
+    what = e.what();
+  } catch (...) {
+  }
+  std::fflush(stdout);
+  std::cerr << (g_tool ? *g_tool : std::string("fracture")) << ": error: " << what << std::endl;
+  run_cleanup_hooks();
+  _exit(kExitRuntime);
+}
+
+}  // namespace
+
 int run_tool(const std::string& tool, const std::function<int()>& body) {
+  g_tool = &tool;
+  std::set_terminate(on_terminate);
+  // Past a file size limit (ulimit -f) a write fails with EFBIG, reported with the file's name, instead of
+  // the signal ending the process with no word and its temporaries left.
+  std::signal(SIGXFSZ, SIG_IGN);
   auto fail = [&](const char* what, int code) {
     std::fflush(stdout);
     std::cout.flush();
@@ -215,6 +281,8 @@ int run_tool(const std::string& tool, const std::function<int()>& body) {
     return fail(e.what(), kExitBadInput);
   } catch (const po::error& e) {
     return fail(e.what(), kExitBadInput);
+  } catch (const std::bad_alloc&) {
+    return fail(out_of_memory().what(), kExitRuntime);
   } catch (const std::exception& e) {
     return fail(e.what(), kExitRuntime);
   }
@@ -281,6 +349,13 @@ std::array<double, 2> parse_pair_double(const std::string& text, const std::stri
 }
 std::array<std::int64_t, 2> parse_pair_int(const std::string& text, const std::string& option) {
   return parse_pair<std::int64_t>(text, option);
+}
+
+std::set<std::string> given_options(const po::variables_map& vm) {
+  std::set<std::string> given;
+  for (const auto& [key, value] : vm)
+    if (!value.defaulted()) given.insert(key);
+  return given;
 }
 
 std::vector<std::pair<std::string, std::string>> resolved_options(const po::variables_map& vm) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,7 +46,8 @@ struct Exit {
 };
 
 // Parse argv into vm (notifying the bound variables). Handles --help and --version (throws Exit{0})
-// and --config FILE (the same options, one "key = value" a line; the command line wins). Throws
+// and --config FILE (a regular text file or a pipe: the same options, one "key = value" a line, each key
+// once and never 'config' itself; a key on the command line too takes the command line's value). Throws
 // UsageError on bad options. With `scene_overrides` (the command line's, from split_overrides), the
 // file may also hold scene keys, "section.key = value" or "key = value" under "[section]": they go
 // before the command line's, which win.
@@ -55,7 +57,7 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
 
 // Splits scene overrides out of argv: every "--section.key VALUE" or "--section.key=VALUE" (a dotted
 // option name) goes to `overrides` as {"section.key", "VALUE"}; the rest stays in the returned argv
-// (argv[0] first) for parse(). UsageError for a dotted option without a value.
+// (argv[0] first) for parse(). UsageError for a dotted option without a value, or given twice.
 std::vector<const char*> split_overrides(int argc, const char* const* argv,
                                          std::vector<std::pair<std::string, std::string>>& overrides);
 
@@ -79,6 +81,9 @@ void check_threads(int threads, const std::string& option);
 // "40x20" -> {40, 20}; "0.4x0.2" -> {0.4, 0.2}. Throws UsageError naming `option`.
 std::array<double, 2> parse_pair_double(const std::string& text, const std::string& option);
 std::array<std::int64_t, 2> parse_pair_int(const std::string& text, const std::string& option);
+
+// The options the command line or the --config file gave (not defaulted), by long name.
+std::set<std::string> given_options(const po::variables_map& vm);
 
 // Every option in vm as text (defaulted ones too), for the record in /parameters.
 std::vector<std::pair<std::string, std::string>> resolved_options(const po::variables_map& vm);

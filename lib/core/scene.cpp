@@ -3,10 +3,10 @@
 #include <boost/program_options.hpp>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/text_file.hpp"
 
 namespace frac {
 namespace po = boost::program_options;
@@ -43,11 +43,7 @@ Scene Scene::parse(const std::string& text, const std::string& name) {
 }
 
 Scene Scene::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the scene file");
-  std::stringstream text;
-  text << in.rdbuf();
-  Scene scene = parse(text.str(), path);
+  Scene scene = parse(read_text_file(path, "the scene file"), path);
   // An empty file (a truncated copy, a wrong path to /dev/null) would run on defaults alone.
   if (scene.values_.empty()) throw InputError(path + ": the scene file sets no keys (an empty scene)");
   return scene;
@@ -121,6 +117,12 @@ double Scene::in(std::string_view key, double fallback, const Interval& range) {
         sign ? (range.lo_open ? "must be positive" : "must not be negative") : "must lie in " + range.text());
   }
   return x;
+}
+
+void Scene::refuse(std::string_view key, const std::string& why) const {
+  const auto given = values_.find(key);
+  const auto read = resolved_.find(key);
+  bad(key, given != values_.end() ? given->second : read != resolved_.end() ? read->second : "", why);
 }
 
 void Scene::require(std::string_view key, const std::string& what) const {

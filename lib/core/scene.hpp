@@ -43,6 +43,9 @@ class Scene {
   // UsageError naming the scene unless `key` is given (in the file or as an override); `what` says what
   // it decides ("what the run does").
   void require(std::string_view key, const std::string& what) const;
+  // UsageError naming `key` (where it was given) and its value as written, with `why`: for checks of a value
+  // against others that the getters cannot make.
+  [[noreturn]] void refuse(std::string_view key, const std::string& why) const;
 
   // Every key read so far with its resolved value (text), sorted.
   std::vector<std::pair<std::string, std::string>> resolved() const;

@@ -1,5 +1,7 @@
 #include "core/scene_tool.hpp"
 
+#include "core/file_roles.hpp"
+
 namespace frac::cli {
 
 SceneToolArgs parse_scene_tool(int argc, const char* const* argv, const ToolSpec& spec) {
@@ -22,6 +24,14 @@ SceneToolArgs parse_scene_tool(int argc, const char* const* argv, const ToolSpec
   parse(static_cast<int>(args.size()), args.data(), spec, desc, positional, &a.overrides);
   a.command_line = command_line(argc, argv);
   parse_checkpoint_every(every, "--checkpoint-every", a.checkpoint);
+  const std::string checkpoint = checkpoint_path(a.checkpoint, a.common.output);
+  // (resuming from the file the run checkpoints to is the usual case, not a clash)
+  const bool resume_in_place = !a.checkpoint.resume.empty() && same_file(a.checkpoint.resume, checkpoint);
+  check_file_roles({{"MESH", a.input},
+                    {"--scene", a.scene_path},
+                    {"--config", a.common.config},
+                    {"--resume", resume_in_place ? "" : a.checkpoint.resume}},
+                   {{"-o", a.common.output}, {"--checkpoint", checkpoint}});
   return a;
 }
 

@@ -54,6 +54,8 @@ DeferSignals::DeferSignals() {
 
 DeferSignals::~DeferSignals() { g_deferred = 0; }
 
+void run_cleanup_hooks() { run_hooks(); }
+
 int stop_signal() { return g_noted; }
 
 void die_by_signal(int sig) {

@@ -19,6 +19,9 @@ class DeferSignals {
   DeferSignals& operator=(const DeferSignals&) = delete;
 };
 
+// Runs the cleanup hooks (async-signal-safe): for a process that ends otherwise than by a signal or exit().
+void run_cleanup_hooks();
+
 // The signal noted while deferred, or 0.
 int stop_signal();
 

@@ -12,8 +12,8 @@ Material read_material(Scene& s) {
   Material m;
   m.density = s.in("material.density", m.density, Interval::open_closed(0, kDensity));
   m.thickness = s.in("material.thickness", m.thickness, Interval::open_closed(0, kThickness));
-  m.grain_modulus = s.in("material.grain_modulus", m.grain_modulus, Interval::closed(0, kModulus));
-  m.beam_modulus = s.in("material.beam_modulus", m.beam_modulus, Interval::closed(0, kModulus));
+  m.grain_modulus = s.in("material.grain_modulus", m.grain_modulus, Interval::open_closed(0, kModulus));
+  m.beam_modulus = s.in("material.beam_modulus", m.beam_modulus, Interval::open_closed(0, kModulus));
   m.shear_ratio = s.in("material.shear_ratio", m.shear_ratio, Interval::open_closed(0, 1e3));
   m.t_eps = s.positive("material.t_eps", m.t_eps);  // (thresholds may be out of reach: 1e300 is never-break)
   m.t_theta = s.positive("material.t_theta_deg", 4.0) * std::numbers::pi / 180.0;

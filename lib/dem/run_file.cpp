@@ -52,15 +52,19 @@ RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const i
   io::write_header(out.root(), "run", run, out.uuid());
   out.root().group("parameters/dem-run").write_strings("scene_text", {scene.source_text()});
   io::RunWriter writer(out.root(), *sim.cell_mesh, sim.model.bodies().mass, sim.model.bodies().inertia);
-  RunSummary s = sim.run(&writer, progress, checkpoints.start(writer));
+  const io::Continuation continuation = checkpoints.start(writer);
+  RunSummary s = checkpoints.guard([&] {
+    RunSummary r = sim.run(&writer, progress, continuation);
+    out.root().set_attr("steps", static_cast<std::int64_t>(r.steps));
+    out.root().set_attr("end_time", r.time);
+    out.root().set_attr("stop_reason", r.stop_reason);
+    out.root().set_attr("wall_seconds", r.wall_seconds, "provenance");  // differs run to run: not data
+    out.root().set_attr("start_evaluations", static_cast<std::int64_t>(r.start_evaluations));
+    out.commit();
+    return r;
+  });
   s.checkpoints = checkpoints.written();
   s.checkpoint_seconds = checkpoints.seconds();
-  out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
-  out.root().set_attr("end_time", s.time);
-  out.root().set_attr("stop_reason", s.stop_reason);
-  out.root().set_attr("wall_seconds", s.wall_seconds, "provenance");  // differs run to run: not data
-  out.root().set_attr("start_evaluations", static_cast<std::int64_t>(s.start_evaluations));
-  out.commit();
   checkpoints.finish();
   return s;
 }

@@ -40,14 +40,11 @@ DemScene read_dem_scene(Scene& s) {
   IntegratorSettings& in = d.integrator;
   in.kind = dynamics::parse_integrator_kind(s.text("integrator.kind", "gear5"), "integrator.kind");
   in.start = dynamics::parse_start_kind(s.choice("integrator.start", "zero", {"zero", "exact"}), "integrator.start");
-  const std::string dt = s.text("integrator.dt", "auto");
-  if (dt != "auto") {
-    in.dt = s.positive("integrator.dt", 0);
-  }
+  d.stop.t_max = s.positive("stop.t_max", d.stop.t_max);
+  in.dt = dynamics::read_time_step(s, d.stop.t_max);
   in.safety = s.positive("integrator.safety", in.safety);
   if (in.safety > 1) throw UsageError(s.name() + ": integrator.safety must not exceed 1");
   in.allow_unstable = s.flag("integrator.allow_unstable", in.allow_unstable);
-  d.stop.t_max = s.positive("stop.t_max", d.stop.t_max);
   d.stop.max_steps = s.integer("stop.max_steps", d.stop.max_steps);
   d.stop.steps_without_breaking = s.integer("stop.steps_without_breaking", d.stop.steps_without_breaking);
   if (d.stop.max_steps <= 0) throw UsageError(s.name() + ": stop.max_steps must be positive");

@@ -1,10 +1,13 @@
 #include "dem/simulation.hpp"
 
 #include <cmath>
+#include <new>
+
+#include "core/memory.hpp"
 
 namespace frac::dem {
 
-Simulation::Simulation(const mesh::CellMesh& mesh, const DemScene& s)
+Simulation::Simulation(const mesh::CellMesh& mesh, const DemScene& s) try
     : cell_mesh(&mesh),
       scene(s),
       model(mesh, s.material, s.physics),
@@ -20,6 +23,8 @@ Simulation::Simulation(const mesh::CellMesh& mesh, const DemScene& s)
   time_step = choose_time_step(mesh, s.material, s.physics, s.integrator.kind, s.integrator.dt, s.integrator.safety,
                                s.integrator.allow_unstable);
   integrator = dynamics::make_integrator(s.integrator.kind);
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the DEM model of " + std::to_string(mesh.cells()) + " cells");
 }
 
 KickReport kick_report(const Simulation& sim) {

@@ -23,6 +23,16 @@ IntegratorKind parse_integrator_kind(std::string_view name, std::string_view opt
                    "' (choose gear5 or verlet)");
 }
 
+double read_time_step(Scene& scene, double t_max) {
+  if (scene.text("integrator.dt", "auto") == "auto") return 0.0;
+  const double dt = scene.positive("integrator.dt", 0.0);
+  const double steps = t_max / dt;
+  if (!(steps <= kMostSteps))
+    scene.refuse("integrator.dt", format_value(steps) + " steps to reach stop.t_max = " + format_value(t_max) +
+                                      " s, more than " + format_value(kMostSteps));
+  return dt;
+}
+
 std::string_view name(IntegratorKind kind) { return kind == IntegratorKind::gear5 ? "gear5" : "verlet"; }
 
 StartKind parse_start_kind(std::string_view name, std::string_view option) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/scene.hpp"
 #include "core/state_archive.hpp"
 
 namespace frac::dynamics {
@@ -51,6 +52,12 @@ std::string_view name(StartKind start);
 // "gear5" or "verlet"; UsageError naming `option` otherwise.
 IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option);
 std::string_view name(IntegratorKind kind);
+
+// The most steps a run may need to reach stop.t_max: a step that needs more (1e-300 s) would never end.
+inline constexpr double kMostSteps = 1e12;
+// integrator.dt of a scene: 0 for "auto" (the model picks a stable step), else a positive step reaching `t_max`
+// in at most kMostSteps steps; UsageError naming the key, the value and the count otherwise.
+double read_time_step(Scene& scene, double t_max);
 
 // The largest ω·dt for which the scheme stays stable on an undamped harmonic oscillator ẍ = −ω²x
 // (measured by tests/unit/test_integrator.cpp). The time-step check divides it by ω_max.

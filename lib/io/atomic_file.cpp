@@ -3,6 +3,7 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "core/signals.hpp"
+#include "io/output_target.hpp"
 
 namespace frac::io {
 namespace {
@@ -75,6 +77,9 @@ void remove_abandoned_temps(const std::string& target) {
 }
 
 std::string write_failure(const std::string& path, int error) {
+  struct rlimit limit {};
+  if (error == EFBIG && getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    return "the file size limit is reached (ulimit -f: " + std::to_string(limit.rlim_cur) + " bytes)";
   if (path == "-") return error != 0 ? std::strerror(error) : "write error";
   const std::filesystem::path p(path);
   const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
@@ -128,12 +133,10 @@ void AtomicFile::commit(bool durable) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
-      throw RuntimeError("-: cannot write to standard output (" + std::string(std::strerror(errno)) + ")");
-    return;
-  }
-  AtomicFile file(path);
+  const OutputTarget target = resolve_output(path);
+  if (target.kind == OutputKind::standard_output) return write_standard_output(text.data(), text.size());
+  if (target.kind == OutputKind::stream) return OutputStream(target.path, false).write(text.data(), text.size());
+  AtomicFile file(target.path);
   {
     std::FILE* f = std::fopen(file.path().c_str(), "wb");
     if (!f) throw RuntimeError(path + ": cannot write the file (" + write_failure(path, errno) + ")");

@@ -29,14 +29,14 @@ class AtomicFile {
   bool committed_ = false;
 };
 
-// Why a write to `path` may have failed, for messages: "the disk is full" when its file system has no
-// space left, else the system's message for `error` (an errno value).
+// Why a write to `path` may have failed, for messages: the file size limit (EFBIG under ulimit -f), "the disk
+// is full" when its file system has no space left, else the system's message for `error` (an errno value).
 std::string write_failure(const std::string& path, int error);
 
 // Removes the temporaries of `target` that no process holds locked: left by a killed writer.
 void remove_abandoned_temps(const std::string& target);
 
-// Writes `text` to `path` atomically; "-" writes it to standard output.
+// Writes `text` to `path` atomically; to standard output or a device as io/output_target resolves `path`.
 void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace frac::io

@@ -11,6 +11,7 @@
 #include "io/checksum.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
+#include "io/output_target.hpp"
 
 namespace frac::io {
 namespace {
@@ -124,9 +125,20 @@ std::string run_key(const ToolRun& run) {
 
 // ---------------------------------------------------------------- Checkpoints
 
-Checkpoints::Checkpoints(const CheckpointOptions& options, std::string path, const ToolRun& run, RunWriter* writer)
+Checkpoints::Checkpoints(const CheckpointOptions& options, std::string path, const ToolRun& run, RunWriter* writer,
+                         std::string last_path, std::int64_t last_step)
     : options_(options), path_(std::move(path)), run_(run), key_(run_key(run)), writer_(writer),
-      last_time_(std::chrono::steady_clock::now()) {}
+      last_time_(std::chrono::steady_clock::now()), last_path_(std::move(last_path)), last_step_(last_step) {}
+
+std::string Checkpoints::stopped_note(std::int64_t step) const {
+  std::string note = "the run stopped" + (step >= 0 ? " after step " + std::to_string(step) : std::string());
+  if (!enabled() && last_path_.empty())
+    return note + "; it wrote no checkpoints (its output is not a file: --checkpoint FILE gives it some)";
+  if (last_path_.empty())
+    return note + "; no checkpoint of it was written before: run again, it starts afresh";
+  return note + "; its last checkpoint, " + last_path_ + " (step " + std::to_string(last_step_) +
+         "), is intact: the same command line continues from it";
+}
 
 bool Checkpoints::due(std::int64_t step) const {
   if (!enabled()) return false;
@@ -137,17 +149,23 @@ bool Checkpoints::due(std::int64_t step) const {
 
 void Checkpoints::write(std::int64_t step, double time, const std::function<void(StateArchive&)>& visit) {
   const auto start = std::chrono::steady_clock::now();
-  OutputFile out(path_);
-  write_header(out.root(), "checkpoint", run_, out.uuid());
-  out.root().set_attr("run_key", key_);
-  out.root().set_attr("step", static_cast<std::int64_t>(step));
-  out.root().set_attr("time", time);
-  Group run = out.root().create_group("run");
-  if (writer_) writer_->copy_progress(run);
-  StateWriter state(out.root().create_group("state"));
-  visit(state);
-  state.finish();
-  out.commit(true);
+  try {
+    OutputFile out(path_);
+    write_header(out.root(), "checkpoint", run_, out.uuid());
+    out.root().set_attr("run_key", key_);
+    out.root().set_attr("step", static_cast<std::int64_t>(step));
+    out.root().set_attr("time", time);
+    Group run = out.root().create_group("run");
+    if (writer_) writer_->copy_progress(run);
+    StateWriter state(out.root().create_group("state"));
+    visit(state);
+    state.finish();
+    out.commit(true);
+  } catch (const RuntimeError& e) {
+    throw RunStopped("cannot write the checkpoint: " + std::string(e.what()) + "; " + stopped_note(step));
+  }
+  last_path_ = path_;
+  last_step_ = step;
   last_time_ = std::chrono::steady_clock::now();
   ++written_;
   seconds_ += std::chrono::duration<double>(last_time_ - start).count();
@@ -167,7 +185,11 @@ void Checkpoints::stop_if_signalled(std::int64_t step, double time, const std::f
   msg << "stopped by " << (sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP") << " after step " << step
       << " (t = " << time << " s)";
   if (enabled()) {
-    write(step, time, visit);
+    try {
+      write(step, time, visit);
+    } catch (const RunStopped& e) {
+      throw RunStopped(msg.str() + "; " + e.what());
+    }
     msg << "; checkpoint " << path_ << " written: the same command line continues the run";
   } else {
     msg << "; no checkpoint (the output is standard output: give --checkpoint FILE)";
@@ -211,13 +233,36 @@ std::optional<Resume> Resume::find(const CheckpointOptions& options, const std::
 
 // ---------------------------------------------------------------- RunCheckpoints
 
+namespace {
+
+// The checkpoint file of a run writing `output`, checked before the run: a file (links resolved) in a folder
+// the run can write to; none by default when the output is not a file (standard output, a device, a FIFO).
+std::string checked_checkpoint_path(const CheckpointOptions& options, const std::string& output) {
+  if (options.path.empty() && (output == "-" || resolve_output(output).kind != OutputKind::file)) return "";
+  const std::string path = checkpoint_path(options, output);
+  const OutputTarget target = resolve_output(path);
+  if (target.kind != OutputKind::file)
+    throw UsageError("--checkpoint " + path + ": a checkpoint is a file, not standard output, a device or a FIFO");
+  try {
+    AtomicFile probe(target.path);  // (a temporary made and removed: the folder takes files)
+  } catch (const UsageError& e) {
+    throw UsageError("--checkpoint: " + std::string(e.what()));
+  } catch (const RuntimeError& e) {
+    throw RuntimeError("--checkpoint: " + std::string(e.what()));
+  }
+  return target.path;
+}
+
+}  // namespace
+
 RunCheckpoints::RunCheckpoints(const CheckpointOptions& options, const std::string& output, ToolRun& run,
                                const std::function<void(const std::string&)>& note)
-    : options_(options), path_(checkpoint_path(options, output)), run_(run), note_(note),
+    : options_(options), path_(checked_checkpoint_path(options, output)), run_(run), note_(note),
       resume_(Resume::find(options, path_, run, note)) {}
 
 Continuation RunCheckpoints::start(RunWriter& writer) {
-  checkpoints_.emplace(options_, path_, run_, &writer);
+  checkpoints_.emplace(options_, path_, run_, &writer, resume_ ? resume_->path() : "",
+                       resume_ ? resume_->step() : -1);
   Continuation c{&*checkpoints_, nullptr};
   if (resume_) {
     note_("continuing from " + resume_->path() + " at step " + std::to_string(resume_->step()));

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "core/checkpoint_options.hpp"
+#include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/provenance.hpp"
 #include "core/state_archive.hpp"
 #include "io/hdf5.hpp"
@@ -61,6 +63,12 @@ class StateReader final : public StateArchive {
   std::map<std::string, Entry> entries_;
 };
 
+// A run that stopped on a runtime failure (a full disk, a file size limit, an unwritable checkpoint): the
+// message says so and names the last good checkpoint, which is intact.
+struct RunStopped : RuntimeError {
+  using RuntimeError::RuntimeError;
+};
+
 // What must match for a checkpoint to continue a run: tool, version, seed, parameters but the scene file's path,
 // input uuids; one "key=value" a line.
 std::string run_key(const ToolRun& run);
@@ -68,14 +76,19 @@ std::string run_key(const ToolRun& run);
 // The checkpoints of one run: when one is due, and writing it.
 class Checkpoints {
  public:
-  // None when `path` is empty (standard output without --checkpoint).
-  Checkpoints(const CheckpointOptions& options, std::string path, const ToolRun& run, RunWriter* writer);
+  // None when `path` is empty (standard output without --checkpoint). `last_path` and `last_step`: the
+  // checkpoint the run continued from ("" : none).
+  Checkpoints(const CheckpointOptions& options, std::string path, const ToolRun& run, RunWriter* writer,
+              std::string last_path = "", std::int64_t last_step = -1);
   bool enabled() const { return !path_.empty(); }
   const std::string& path() const { return path_; }
   // Whether a periodic checkpoint is due after `step` (steps, or wall-clock time since the last).
   bool due(std::int64_t step) const;
-  // Writes one: the output so far (through the writer) and the state `visit` names.
+  // Writes one: the output so far (through the writer) and the state `visit` names. On a failure, RunStopped
+  // naming the cause, the step and the last good checkpoint (the one before stays until the new one is whole).
   void write(std::int64_t step, double time, const std::function<void(StateArchive&)>& visit);
+  // "the run stopped [after step N]; its last checkpoint, FILE (step M), is intact: ..." (or that there is none).
+  std::string stopped_note(std::int64_t step = -1) const;
   // After the output is in place: the checkpoint is removed.
   void remove();
   // A stop signal noted (core/signals): the checkpoint written (when enabled) and Interrupted thrown, naming the
@@ -91,6 +104,8 @@ class Checkpoints {
   std::string key_;
   RunWriter* writer_;
   std::chrono::steady_clock::time_point last_time_;
+  std::string last_path_;        // the last good checkpoint ("" : none)
+  std::int64_t last_step_ = -1;  // its step
   int written_ = 0;
   double seconds_ = 0;
 };
@@ -125,12 +140,28 @@ struct Continuation {
 // The checkpoints of a run writing `output`, as a tool runs them: a checkpoint to continue from is looked for
 // first (Resume::find; its segments go into `run` before the output's header is written); once the output's
 // writer exists, start() replays the output so far into it; after the output is in place, finish() removes
-// the checkpoint. Notes (continuing, or a checkpoint of another run) go to `note`.
+// the checkpoint. Notes (continuing, or a checkpoint of another run) go to `note`. The checkpoint is a file
+// (UsageError for a device, a FIFO or standard output; none by default for an output that is not a file), in a
+// folder the run can write to, checked before the run starts.
 class RunCheckpoints {
  public:
   RunCheckpoints(const CheckpointOptions& options, const std::string& output, ToolRun& run,
                  const std::function<void(const std::string&)>& note);
   Continuation start(RunWriter& writer);
+  // Runs `body` (the run and the writing of its output) after start(): a runtime failure in it (a full disk, a
+  // file size limit, no memory) stops the run with RunStopped, naming the last good checkpoint.
+  template <class Body>
+  auto guard(Body&& body) -> decltype(body()) {
+    try {
+      return body();
+    } catch (const RunStopped&) {
+      throw;
+    } catch (const RuntimeError& e) {
+      throw RunStopped(std::string(e.what()) + "; " + checkpoints_->stopped_note());
+    } catch (const std::bad_alloc&) {
+      throw RunStopped(std::string(out_of_memory("the run").what()) + "; " + checkpoints_->stopped_note());
+    }
+  }
   void finish() { checkpoints_->remove(); }
   int written() const { return checkpoints_ ? checkpoints_->written() : 0; }
   double seconds() const { return checkpoints_ ? checkpoints_->seconds() : 0; }

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -123,7 +124,7 @@ std::span<const unsigned char> shuffle_deflate(std::span<const unsigned char> da
   if (parts.size() < count) parts.resize(count);
   auto& out = parts;  // (this thread's buffers: a thread_local named in the region would be each thread's own)
   std::vector<uLong> adler(count);
-  std::string error;
+  std::exception_ptr error;
   std::mutex error_mutex;
   std::atomic<std::size_t> next{0};  // (the parts dealt out one at a time, to whichever thread is free)
   as_team(count > 1, [&] {
@@ -133,13 +134,13 @@ std::span<const unsigned char> shuffle_deflate(std::span<const unsigned char> da
         const auto in = input.subspan(p * kPartBytes, std::min(kPartBytes, chunk_bytes - p * kPartBytes));
         deflater.part(in, p + 1 == count, out[p]);
         adler[p] = adler32(adler32(0, nullptr, 0), in.data(), static_cast<uInt>(in.size()));
-      } catch (const std::exception& e) {  // (no exception may leave the team)
+      } catch (...) {  // (no exception may leave the team: the first is rethrown after it)
         const std::lock_guard lock(error_mutex);
-        error = e.what();
+        if (!error) error = std::current_exception();
       }
     }
   });
-  if (!error.empty()) throw RuntimeError(error);
+  if (error) std::rethrow_exception(error);
   stream.assign({0x78, 0x01});  // deflate, 32 KiB window, fastest level; (0x7801 % 31 == 0)
   uLong checksum = adler32(0, nullptr, 0);
   for (std::size_t p = 0; p < count; ++p) {

@@ -10,8 +10,10 @@
 #include <type_traits>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "io/atomic_file.hpp"
 #include "io/chunk_codec.hpp"
+#include "io/hdf5_image.hpp"
 #include "io/hdf5_probe.hpp"
 
 namespace frac::io {
@@ -81,6 +83,24 @@ void silence_hdf5_errors() {
     return true;
   }();
   (void)done;
+}
+
+bool hdf5_out_of_memory() {
+  bool found = false;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
+        if (e->maj_num == H5E_RESOURCE || e->min_num == H5E_NOSPACE || e->min_num == H5E_CANTALLOC)
+          *static_cast<bool*>(data) = true;
+        return 0;
+      },
+      &found);
+  return found;
+}
+
+void read_failed(const std::string& where, const std::string& why, std::size_t bytes) {
+  if (hdf5_out_of_memory()) throw OutOfMemory("reading " + where, bytes);
+  throw InputError(where + ": " + why);
 }
 
 namespace {
@@ -310,9 +330,14 @@ std::vector<T> Group::read(std::string_view name, std::vector<hsize_t>* dims_out
   if (columns > 0 && (dims.empty() || dims.back() != columns))
     throw InputError(where(name) + ": expected " + std::to_string(columns) + " columns");
   const hsize_t count = checked_extent(d.get(), ftype.get(), dims, where(name));
-  std::vector<T> out(count);
+  std::vector<T> out;
+  try {
+    out.resize(count);
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemory("reading " + where(name), count * sizeof(T));
+  }
   if (count > 0 && H5Dread(d.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw InputError(where(name) + ": cannot read dataset (corrupt, or values out of range)");
+    read_failed(where(name), "cannot read dataset (corrupt, or values out of range)", count * sizeof(T));
   if (dims_out) *dims_out = dims;
   return out;
 }
@@ -331,7 +356,7 @@ std::vector<std::string> read_string_values(hid_t ftype, hsize_t count, ReadFn&&
   if (H5Tis_variable_str(ftype) > 0) {
     Hid t = vlen_string_type();
     std::vector<char*> ptrs(count, nullptr);
-    if (count > 0 && read_fn(t.get(), ptrs.data()) < 0) throw InputError(where + ": cannot read strings");
+    if (count > 0 && read_fn(t.get(), ptrs.data()) < 0) read_failed(where, "cannot read strings", count * sizeof(char*));
     for (auto* p : ptrs) out.emplace_back(p ? p : "");
     for (auto* p : ptrs) std::free(p);
   } else {
@@ -339,7 +364,7 @@ std::vector<std::string> read_string_values(hid_t ftype, hsize_t count, ReadFn&&
     Hid t(H5Tcopy(H5T_C_S1));
     H5Tset_size(t.get(), size);
     std::vector<char> buf(size * count + 1, '\0');
-    if (count > 0 && read_fn(t.get(), buf.data()) < 0) throw InputError(where + ": cannot read strings");
+    if (count > 0 && read_fn(t.get(), buf.data()) < 0) read_failed(where, "cannot read strings", buf.size());
     for (hsize_t k = 0; k < count; ++k) out.emplace_back(strnlen(buf.data() + k * size, size) ? std::string(buf.data() + k * size, strnlen(buf.data() + k * size, size)) : "");
   }
   return out;
@@ -468,7 +493,7 @@ std::vector<T> read_numeric_attr(const Hid& a, const std::string& what) {
   if (!standard_number_type(ftype.get())) throw InputError(what + ": damaged or unusual number type");
   const std::size_t count = attribute_points(a, ftype, what);
   std::vector<T> out(count);
-  if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0) throw InputError(what + ": cannot read");
+  if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0) read_failed(what, "cannot read", count * sizeof(T));
   return out;
 }
 }  // namespace
@@ -493,40 +518,39 @@ std::vector<double> Group::attr_doubles(std::string_view name, std::string_view 
 }
 
 namespace {
-constexpr unsigned char kHdf5Signature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
 
-std::shared_ptr<std::vector<char>> read_stdin() {
-  auto buf = std::make_shared<std::vector<char>>();
-  std::vector<char> chunk(1 << 20);
-  std::size_t n;
-  while ((n = std::fread(chunk.data(), 1, chunk.size(), stdin)) > 0) buf->insert(buf->end(), chunk.data(), chunk.data() + n);
-  if (std::ferror(stdin)) throw InputError("-: cannot read standard input");
-  return buf;
+// An input that is no regular file (standard input, a FIFO, a device): read into memory, checked, opened in
+// place.
+Group open_stream(std::FILE* in, const std::string& name) {
+  auto image = read_hdf5_image(in, name);
+  auto strings = probe_hdf5_file(name, image.get());
+  // Open the bytes in place: no copy; the buffer lives as long as any group of this file.
+  const hid_t fid = H5LTopen_file_image(image->data(), image->size(),
+                                        H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
+  if (fid < 0 && hdf5_out_of_memory()) throw OutOfMemory("opening " + name, image->size());
+  if (fid < 0) throw InputError(name + ": holds a damaged HDF5 file");
+  Hid file(fid);
+  Hid root(H5Gopen2(fid, "/", H5P_DEFAULT));
+  return Group(std::move(root), name, "/", image, std::move(strings));
 }
+
 }  // namespace
 
 Group open_input(const std::string& path) {
   silence_hdf5_errors();
-  if (path == "-") {
-    auto image = read_stdin();
-    if (image->empty()) throw InputError("-: standard input is empty (expected an HDF5 file)");
-    if (image->size() < sizeof kHdf5Signature || std::memcmp(image->data(), kHdf5Signature, sizeof kHdf5Signature) != 0)
-      throw InputError("-: standard input is not an HDF5 file");
-    auto strings = probe_hdf5_file("-", image.get());
-    // Open the bytes in place: no copy; the buffer lives as long as any group of this file.
-    const hid_t fid = H5LTopen_file_image(image->data(), image->size(),
-                                          H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
-    if (fid < 0) throw InputError("-: standard input holds a damaged HDF5 file");
-    Hid file(fid);
-    Hid root(H5Gopen2(fid, "/", H5P_DEFAULT));
-    return Group(std::move(root), "-", "/", image, std::move(strings));
-  }
+  if (path == "-") return open_stream(stdin, "-");
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rbe"), std::fclose);
+    if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
+    return open_stream(in.get(), path);
+  }
   auto strings = probe_hdf5_file(path, nullptr);
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path + ": not an HDF5 file");
   Hid file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (file.get() < 0 && hdf5_out_of_memory()) throw OutOfMemory("opening " + path, 0);
   if (file.get() < 0) throw InputError(path + ": cannot open (damaged HDF5 file, or no permission)");
   Hid root(H5Gopen2(file.get(), "/", H5P_DEFAULT));
   return Group(std::move(root), path, "/", {}, std::move(strings));

@@ -40,6 +40,13 @@ class Hid {
 // Silences HDF5's own error printing: we report errors ourselves, naming file and object.
 void silence_hdf5_errors();
 
+// Whether the HDF5 call that just failed ran out of memory (a resource error on its error stack): a reader
+// then reports core/memory's OutOfMemory, not a damaged file.
+bool hdf5_out_of_memory();
+// After a read of `where` failed: OutOfMemory (reading `bytes`) when libhdf5 ran out of memory, else
+// InputError "where: why".
+[[noreturn]] void read_failed(const std::string& where, const std::string& why, std::size_t bytes);
+
 // Whether `t` is one of HDF5's standard integer or IEEE float types (8 to 64 bits, either byte order): the
 // only number types the readers convert.
 bool standard_number_type(hid_t t);

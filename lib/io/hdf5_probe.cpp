@@ -9,12 +9,13 @@
 #include <unistd.h>
 
 #include <csignal>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "io/hdf5.hpp"
 
 namespace frac::io {
@@ -66,7 +67,8 @@ void send_strings(haddr_t object, const std::string& attr, char* const* values, 
 }
 
 [[noreturn]] void damaged(const std::string& where, const std::string& why) {
-  send('!', where + "\t" + why);
+  // (libhdf5 out of memory is no fault of the file)
+  send(hdf5_out_of_memory() ? 'm' : '!', where + "\t" + why);
   _exit(3);
 }
 
@@ -271,6 +273,9 @@ std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, co
     g_report = fds[1];
     try {
       child(name, image);
+    } catch (const std::bad_alloc&) {
+      send('m', "\tout of memory");
+      _exit(4);
     } catch (...) {
       _exit(4);
     }
@@ -305,7 +310,7 @@ std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, co
       const std::string payload = received.substr(at + 9, length);
       at += 9 + length;
       if (type == '@') last_object = payload;
-      else if (type == '!') verdict = "!" + payload;
+      else if (type == '!' || type == 'm') verdict = std::string(1, type) + payload;
       else if (type == 'k') verdict = "ok";
       else if (type == 's' && !read_strings_message(payload, *strings)) garbled = done = true;
     }
@@ -317,6 +322,8 @@ std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, co
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
   if (stalled) throw InputError(describe(name, last_object, "libhdf5 makes no progress reading it"));
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && verdict == "ok" && !garbled) return strings;
+  if (verdict.starts_with("m"))
+    throw OutOfMemory("checking " + name + (last_object.empty() ? "" : ":" + last_object), 0);
   if (verdict.starts_with("!")) {
     const auto tab = verdict.find('\t');
     const std::string where = verdict.substr(1, tab - 1), why = verdict.substr(tab + 1);

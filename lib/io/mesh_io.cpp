@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <new>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "mesh/check.hpp"
 
 namespace frac::io {
@@ -200,16 +202,20 @@ mesh::NodeMesh read_node_mesh_as_stored(const Group& root) {
   return m;
 }
 
-mesh::CellMesh read_cell_mesh(const Group& root) {
+mesh::CellMesh read_cell_mesh(const Group& root) try {
   mesh::CellMesh m = read_cell_mesh_as_stored(root);
   require_valid(root, mesh::check_cell_mesh(m));
   return m;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the mesh of " + root.file());
 }
 
-mesh::NodeMesh read_node_mesh(const Group& root) {
+mesh::NodeMesh read_node_mesh(const Group& root) try {
   mesh::NodeMesh m = read_node_mesh_as_stored(root);
   require_valid(root, mesh::check_node_mesh(m));
   return m;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the mesh of " + root.file());
 }
 
 }  // namespace frac::io

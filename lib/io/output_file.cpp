@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/provenance.hpp"
 
 namespace frac::io {
@@ -30,15 +31,16 @@ Hid file_access(bool in_memory) {
 
 OutputFile::OutputFile(std::string path) : path_(std::move(path)), uuid_(make_uuid()) {
   silence_hdf5_errors();
-  if (path_.empty()) throw UsageError("--output: empty file name");
-  if (path_ == "-") {
-    if (isatty(STDOUT_FILENO))
-      throw UsageError("refusing to write an HDF5 file to a terminal: give -o FILE or redirect standard output");
+  const OutputTarget target = resolve_output(path_);
+  if (target.kind == OutputKind::standard_output && isatty(STDOUT_FILENO))
+    throw UsageError("refusing to write an HDF5 file to a terminal: give -o FILE or redirect standard output");
+  if (target.kind == OutputKind::stream) stream_ = std::make_unique<OutputStream>(target.path, true);
+  if (target.kind != OutputKind::file) {
     Hid fapl = file_access(true);
-    file_ = Hid(H5Fcreate(("stdout-" + uuid_ + ".h5").c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()));
-    if (file_.get() < 0) throw RuntimeError("-: cannot create the in-memory HDF5 file");
+    file_ = Hid(H5Fcreate(("memory-" + uuid_ + ".h5").c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()));
+    if (file_.get() < 0) throw RuntimeError(path_ + ": cannot create the in-memory HDF5 file");
   } else {
-    atomic_ = std::make_unique<AtomicFile>(path_);
+    atomic_ = std::make_unique<AtomicFile>(target.path);
     Hid fapl = file_access(false);
     file_ = Hid(H5Fcreate(atomic_->path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()));
     if (file_.get() < 0) throw RuntimeError(path_ + ": cannot create the file (" + write_failure(path_, errno) + ")");
@@ -54,17 +56,22 @@ OutputFile::~OutputFile() {
 
 void OutputFile::commit(bool durable) {
   if (committed_) return;
-  if (path_ == "-") {
-    if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw RuntimeError("-: cannot finish the HDF5 file");
+  if (!atomic_) {
+    if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw RuntimeError(path_ + ": cannot finish the HDF5 file");
     const ssize_t size = H5Fget_file_image(file_.get(), nullptr, 0);
-    if (size <= 0) throw RuntimeError("-: cannot take the HDF5 file image");
-    std::vector<char> image(static_cast<std::size_t>(size));
+    if (size <= 0) throw RuntimeError(path_ + ": cannot take the HDF5 file image");
+    std::vector<char> image;
+    try {
+      image.resize(static_cast<std::size_t>(size));
+    } catch (const std::bad_alloc&) {
+      throw out_of_memory("the HDF5 image of " + path_);
+    }
     if (H5Fget_file_image(file_.get(), image.data(), image.size()) != size)
-      throw RuntimeError("-: cannot take the HDF5 file image");
+      throw RuntimeError(path_ + ": cannot take the HDF5 file image");
     root_.reset();
     file_.reset();
-    if (std::fwrite(image.data(), 1, image.size(), stdout) != image.size() || std::fflush(stdout) != 0)
-      throw RuntimeError("-: cannot write to standard output (" + std::string(std::strerror(errno)) + ")");
+    if (stream_) stream_->write(image.data(), image.size());
+    else write_standard_output(image.data(), image.size());
   } else {
     root_.reset();
     if (H5Fclose(file_.release()) < 0)

@@ -1,8 +1,8 @@
 #pragma once
 // Atomic HDF5 output. A named file is written under a temporary name in the same folder and renamed
-// into place by commit(); "-" builds the file in memory (HDF5 core driver) and commit() writes its
-// image to standard output. Without commit() (an exception, a signal) nothing appears: a crash never
-// leaves a half-written file that Make would take as done.
+// into place by commit(); standard output ("-") and devices or FIFOs (io/output_target) get a file built in
+// memory (HDF5 core driver), whose image commit() writes. Without commit() (an exception, a signal) nothing
+// appears: a crash never leaves a half-written file that Make would take as done.
 #include <optional>
 #include <string>
 
@@ -10,12 +10,13 @@
 
 #include "io/atomic_file.hpp"
 #include "io/hdf5.hpp"
+#include "io/output_target.hpp"
 
 namespace frac::io {
 
 class OutputFile {
  public:
-  // Throws UsageError when `path` is "-" and standard output is a terminal, or the folder is missing.
+  // Throws UsageError when the output is a terminal, or the folder is missing.
   explicit OutputFile(std::string path);
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
@@ -32,7 +33,8 @@ class OutputFile {
 
  private:
   std::string path_;
-  std::unique_ptr<AtomicFile> atomic_;  // the temporary file (none for standard output)
+  std::unique_ptr<AtomicFile> atomic_;    // the temporary file of a file
+  std::unique_ptr<OutputStream> stream_;  // a device or FIFO
   std::string uuid_;
   Hid file_;
   std::optional<Group> root_;

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checksum.hpp"
+#include "io/hdf5_copy.hpp"
 #include "io/mesh_io.hpp"
 
 namespace frac::io {
@@ -26,13 +27,6 @@ std::uint64_t breaks_checksum(const std::vector<BreakEvent>& breaks) {
   return c.h;
 }
 
-// Copies the object at `path` under `from` to the same path under `to` (a checkpoint's copy of the output).
-void copy_object(const Group& from, const std::string& path, Group& to) {
-  Hid lcpl(H5Pcreate(H5P_LINK_CREATE));
-  H5Pset_create_intermediate_group(lcpl.get(), 1);
-  if (H5Ocopy(from.id(), path.c_str(), to.id(), path.c_str(), H5P_DEFAULT, lcpl.get()) < 0)
-    throw RuntimeError(to.where(path) + ": cannot copy the output so far (" + write_failure(to.file(), errno) + ")");
-}
 }  // namespace
 
 RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const double> mass,
@@ -125,7 +119,7 @@ void RunWriter::finish() {
 void RunWriter::copy_progress(Group& to) {
   flush();
   const auto copy = [&](const std::string& path, const SeriesWriter& series) {
-    copy_object(root_, path, to);
+    copy_group(root_, path, to);
     to.group(path).set_attr("checksum", static_cast<std::int64_t>(series.checksum()));
   };
   for (const Trajectory& t : trajectory())

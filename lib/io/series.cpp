@@ -1,9 +1,11 @@
 #include "io/series.hpp"
 
 #include <algorithm>
+#include <new>
 #include <type_traits>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "io/atomic_file.hpp"
 
 namespace frac::io {
@@ -199,13 +201,19 @@ std::vector<T> read_series_rows(const Group& parent, std::string_view name, cons
   Hid fspace(H5Dget_space(d.get()));
   H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, counts.data(), nullptr);
   Hid mspace(H5Screate_simple(static_cast<int>(counts.size()), counts.data(), nullptr));
-  std::vector<T> out(size);
+  std::vector<T> out;
+  try {
+    out.resize(size);
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemory("reading " + g.where("value"), size * sizeof(T));
+  }
   hid_t mem = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE
               : std::is_same_v<T, std::int64_t> ? H5T_NATIVE_INT64
                                                 : H5T_NATIVE_UINT8;
   if (size > 0 && H5Dread(d.get(), mem, mspace.get(), fspace.get(), H5P_DEFAULT, out.data()) < 0)
-    throw InputError(g.where("value") + ": cannot read frames " + std::to_string(first) + " to " +
-                     std::to_string(first + count - 1));
+    read_failed(g.where("value"),
+                "cannot read frames " + std::to_string(first) + " to " + std::to_string(first + count - 1),
+                size * sizeof(T));
   return out;
 }
 

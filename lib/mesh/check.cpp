@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "geometry/polygon.hpp"
+#include "mesh/cell_overlaps.hpp"
 
 namespace frac::mesh {
 namespace {
@@ -82,6 +83,22 @@ double shared_side(std::span<const Vec2> p, std::span<const Vec2> q, double tol)
     }
   }
   return total;
+}
+
+// Cells meet along sides only: pairs that overlap by more than a penetration of `len_tol` (mesh/cell_overlaps),
+// at most the failures shown of a kind.
+void check_overlaps(const CellMesh& m, double len_tol, double g, Failures& fail) {
+  const OverlapSearch s = find_cell_overlaps(m, len_tol, g, 10);
+  for (const CellOverlap& o : s.found) {
+    const double smaller = std::min(m.area[o.a], m.area[o.b]);
+    const std::string by = std::isnan(o.area) ? ""
+                           : " by " + fmt(o.area) + " m^2 (" + std::to_string(std::lround(100 * o.area / smaller)) + "% of the smaller)";
+    fail.add("overlap", "cells " + std::to_string(o.a) + " and " + std::to_string(o.b) + " overlap" + by +
+                            ", centroids " + fmt((m.centroid[o.b] - m.centroid[o.a]).norm()) + " m apart");
+  }
+  if (!s.complete)
+    fail.add("overlap", "not checked: cell " + std::to_string(s.widest) + " reaches so far beyond the others that "
+                        "comparing the cells would take more than linear time");
 }
 
 }  // namespace
@@ -239,6 +256,7 @@ MeshReport check_cell_mesh(const CellMesh& m) {
         }
       }
 
+      if (r.failures.empty()) check_overlaps(m, len_tol, g, fail);  // (it needs convex cells, as checked)
       for (const int d : degree) ++r.neighbour_count[d];
 
       std::ostringstream s;

@@ -19,7 +19,7 @@ struct MeshReport {
 // Cells: at least one; vertex offsets increasing, >= 3 vertices each; every polygon convex and
 // counter-clockwise with its centroid at the body origin; area and second moment consistent with the
 // vertices; beams unique, a < b, in range, l0 = centroid distance, section > 0 and equal to the length
-// of the side the two cells share.
+// of the side the two cells share; no two cells overlap (they meet along sides; mesh/cell_overlaps).
 MeshReport check_cell_mesh(const CellMesh& m);
 
 // Nodes: at least two; positions finite; bonds unique, a < b, in range, lengths = distances.

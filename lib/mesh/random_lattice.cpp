@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <limits>
+#include <new>
 #include <numbers>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/rng.hpp"
 #include "geometry/polygon.hpp"
 #include "mesh/voronoi.hpp"
@@ -104,7 +106,15 @@ std::vector<geometry::Vec2> throw_sites(std::int64_t n_x, std::int64_t n_y, doub
 
 }  // namespace
 
-CellMesh make_random_lattice(const RandomLatticeOptions& opt) {
+void refuse_ignored_options(const RandomLatticeOptions& opt, const std::set<std::string>& given) {
+  const auto refuse = [&](const std::string& option, bool ignored, const std::string& why) {
+    if (ignored && given.count(option)) throw UsageError("--" + option + ": " + why);
+  };
+  refuse("size", opt.shape == "disc", "applies to --shape rect; a disc takes --diameter");
+  refuse("diameter", opt.shape == "rect", "applies to --shape disc; a rectangle takes --size");
+}
+
+CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
   validate(opt);
   CellMesh m;
   m.shape = opt.shape;
@@ -210,6 +220,8 @@ CellMesh make_random_lattice(const RandomLatticeOptions& opt) {
     m.beam_section.push_back(vd.shared_side[e]);
   }
   return m;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the Voronoi mesh of " + std::to_string(opt.shape == "disc" ? opt.cells : opt.nx * opt.ny) + " cells");
 }
 
 }  // namespace frac::mesh

@@ -13,6 +13,7 @@
 // A site thrown outside the box (disc region with a > g/2, boundary cells) is mirrored back across
 // the box side. Vertices closer than 1e-9 g are merged; beams need a shared side >= min_section g.
 #include <cstdint>
+#include <set>
 #include <string>
 
 #include "mesh/cell_mesh.hpp"
@@ -33,5 +34,10 @@ struct RandomLatticeOptions {
 
 // Throws UsageError (naming the option) for invalid options.
 CellMesh make_random_lattice(const RandomLatticeOptions& opt);
+
+// UsageError naming an option given (`given`: long option names, as cli::given_options) that `opt` ignores:
+// --size of a disc, --diameter of a rectangle. (--seed and --disorder-region at disorder 0 are kept: a sweep over
+// the disorder at one seed passes them at every level.)
+void refuse_ignored_options(const RandomLatticeOptions& opt, const std::set<std::string>& given);
 
 }  // namespace frac::mesh

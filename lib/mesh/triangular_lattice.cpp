@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace frac::mesh {
 namespace {
@@ -31,7 +33,7 @@ std::string fmt(double x) {
 // levels (m-1)/2 and (m-1)/2 + 1 of m (integer division: for odd m the line runs just above the middle
 // level). A bond is cut when its ends lie on opposite sides of notch_y and the line crosses it at
 // x - x_min < L. notch_y is recorded even without a notch (the line a crack would follow).
-NodeMesh make_triangular_lattice(const TriangularLatticeOptions& opt) {
+NodeMesh make_triangular_lattice(const TriangularLatticeOptions& opt) try {
   if (opt.nx < 2 || opt.ny < 2) {
     throw UsageError("--nodes: need at least 2 x 2 nodes, got " + std::to_string(opt.nx) + " x " +
                      std::to_string(opt.ny));
@@ -116,6 +118,8 @@ NodeMesh make_triangular_lattice(const TriangularLatticeOptions& opt) {
     }
   }
   return m;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the lattice of " + std::to_string(opt.nx) + " x " + std::to_string(opt.ny) + " nodes");
 }
 
 }  // namespace frac::mesh

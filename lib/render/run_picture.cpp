@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <new>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/series.hpp"
@@ -46,6 +48,21 @@ std::optional<double> parameter_double(const io::Group& root, const std::string&
   } catch (const std::logic_error&) {
   }
   throw InputError(root.where("parameters/" + tool) + ": attribute '" + key + "' = '" + *text + "' is not a number");
+}
+
+// A body at a NaN position or angle would be left out of the picture unnoticed: InputError naming the dataset,
+// the frame and the body.
+void require_finite_frame(const io::Group& root, bool cells, const io::BodyFrame& f, long long frame) {
+  const std::string group = cells ? "particles/cells/" : "particles/nodes/";
+  const auto refuse = [&](const char* dataset, std::size_t i, const std::string& value) {
+    throw InputError(root.where(group + dataset) + ": frame " + std::to_string(frame) + " (t = " + sci(f.time, 6) +
+                     " s): " + (cells ? "cell " : "node ") + std::to_string(i) + ": " + value + " is not finite");
+  };
+  for (std::size_t i = 0; 2 * i + 1 < f.position.size(); ++i)
+    if (!std::isfinite(f.position[2 * i]) || !std::isfinite(f.position[2 * i + 1]))
+      refuse("position", i, "(" + sci(f.position[2 * i]) + ", " + sci(f.position[2 * i + 1]) + ")");
+  for (std::size_t i = 0; i < f.angle.size(); ++i)
+    if (!std::isfinite(f.angle[i])) refuse("angle", i, "angle " + sci(f.angle[i]));
 }
 
 double median(std::vector<double> v) {
@@ -113,7 +130,7 @@ struct RunPicture::FrameData {
   std::vector<std::uint8_t> intact;
 };
 
-RunPicture::RunPicture(const io::Group& root, std::optional<FragmentLabels> labels, PictureOptions options)
+RunPicture::RunPicture(const io::Group& root, std::optional<FragmentLabels> labels, PictureOptions options) try
     : root_(root), labels_(std::move(labels)), opt_(std::move(options)) {
   const std::string kind = io::check_header(root, {"mesh", "run"});
   run_ = kind == "run";
@@ -201,6 +218,8 @@ RunPicture::RunPicture(const io::Group& root, std::optional<FragmentLabels> labe
     field_label_ = (vector ? "|" + leaf + "|" : leaf) + (unit.empty() ? "" : " (" + pretty_unit(unit) + ")");
   }
   if (opt_.range) fixed_range_ = opt_.range;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the picture of " + root.file());
 }
 
 long long RunPicture::default_frame() const {
@@ -240,6 +259,7 @@ RunPicture::FrameData RunPicture::load(long long frame) const {
   }
   const long long k = frame_index(frame);
   io::BodyFrame f = io::read_frame(root_, k);
+  require_finite_frame(root_, cells_, f, k);
   const std::size_t n = info_.mass.size();
   if (cells_ && n != cell_mesh_.cells())
     throw InputError(root_.where("particles/cells/mass") + ": " + std::to_string(n) + " cells, the mesh has " +
@@ -325,7 +345,7 @@ double RunPicture::link_scale_max(const FrameData& d) const {
   return m > 0.0 ? m : 1.0;
 }
 
-Figure RunPicture::figure(long long frame) const {
+Figure RunPicture::figure(long long frame) const try {
   const FrameData d = load(frame);
   const std::size_t n = d.position.size() / 2;
   auto at = [&](std::size_t i) { return Vec2(d.position[2 * i], d.position[2 * i + 1]); };
@@ -374,11 +394,8 @@ Figure RunPicture::figure(long long frame) const {
 
   if (cells_) {
     fig.polygons.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 c = at(i);
-      if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || !std::isfinite(d.angle[i])) continue;
-      fig.polygons.push_back({world_polygon(cell_mesh_.polygon(i), c, d.angle[i]), fill[i]});
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      fig.polygons.push_back({world_polygon(cell_mesh_.polygon(i), at(i), d.angle[i]), fill[i]});
   } else {
     fig.dot_radius = 0.3 * link_length_;
     fig.dots.reserve(n);
@@ -432,6 +449,8 @@ Figure RunPicture::figure(long long frame) const {
   fig.axes = opt_.axes;
   fig.view = opt_.view ? *opt_.view : content_bounds(fig);
   return fig;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the picture of frame " + std::to_string(frame));
 }
 
 void RunPicture::fix_across(const std::vector<long long>& frames) {

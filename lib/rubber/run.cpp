@@ -5,10 +5,12 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <new>
 #include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "core/rng.hpp"
 #include "core/signals.hpp"
 #include "dynamics/runaway.hpp"
@@ -17,7 +19,7 @@
 
 namespace frac::rubber {
 
-RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std::uint64_t seed, int threads) {
+RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std::uint64_t seed, int threads) try {
   const RubberScene& sc = su.scene;
   RubberSystem sys;
   ModelOptions mo;
@@ -128,6 +130,8 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
     sys.v0[n + i] = rate_y * L.ry[i];
   }
   return sys;
+} catch (const std::bad_alloc&) {
+  throw out_of_memory("the rubber lattice of " + std::to_string(mesh.nodes()) + " nodes");
 }
 
 namespace {

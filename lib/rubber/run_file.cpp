@@ -32,13 +32,17 @@ RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const 
   out.root().group("parameters/rubber-run").write_strings("scene_text", {scene.source_text()});
   const std::vector<double> mass(mesh.nodes(), setup.node_mass);
   io::RunWriter writer(out.root(), mesh, mass);
-  RubberSummary s = run_rubber(system, setup, &writer, progress, checkpoints.start(writer));
+  const io::Continuation continuation = checkpoints.start(writer);
+  RubberSummary s = checkpoints.guard([&] {
+    RubberSummary r = run_rubber(system, setup, &writer, progress, continuation);
+    out.root().set_attr("steps", static_cast<std::int64_t>(r.steps));
+    out.root().set_attr("end_time", r.time);
+    out.root().set_attr("stop_reason", r.stop_reason);
+    out.commit();
+    return r;
+  });
   s.checkpoints = checkpoints.written();
   s.checkpoint_seconds = checkpoints.seconds();
-  out.root().set_attr("steps", static_cast<std::int64_t>(s.steps));
-  out.root().set_attr("end_time", s.time);
-  out.root().set_attr("stop_reason", s.stop_reason);
-  out.commit();
   checkpoints.finish();
   return s;
 }

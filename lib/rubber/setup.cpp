@@ -133,12 +133,12 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   r.noise = s.in("initial.noise", 0.0, Interval::closed(0, kSpeed));
 
   r.integrator = dynamics::parse_integrator_kind(s.text("integrator.kind", "verlet"), "integrator.kind");
-  if (s.text("integrator.dt", "auto") != "auto") r.dt = s.positive("integrator.dt", 0);
+  r.t_max = s.positive("stop.t_max", 100 * tau);
+  r.dt = dynamics::read_time_step(s, r.t_max);
   r.safety = s.positive("integrator.safety", r.safety);
   if (r.safety > 1) throw UsageError(s.name() + ": integrator.safety must not exceed 1");
   r.allow_unstable = s.flag("integrator.allow_unstable", r.allow_unstable);
 
-  r.t_max = s.positive("stop.t_max", 100 * tau);
   r.max_steps = s.integer("stop.max_steps", r.max_steps);
   if (r.max_steps <= 0) throw UsageError(s.name() + ": stop.max_steps must be positive");
   r.tip_margin = s.non_negative("stop.tip_margin", 0.0);

@@ -97,7 +97,8 @@ case $case in
     # SIGTERM (a batch job's time limit) and SIGINT: a checkpoint, a message naming it, death by the signal, no
     # temporary left; the same command line then continues to the uninterrupted run's output.
     "$mesh_gen" voronoi --shape disc --diameter 0.4 --cells 400 --seed 3 -q -o disc.h5
-    run=("$dem" --scene "$scenes/explosion.ini" disc.h5 --stop.t_max 2e-2 --stop.steps_without_breaking 0)
+    base=("$dem" --scene "$scenes/explosion.ini" disc.h5 --stop.steps_without_breaking 0)
+    run=("${base[@]}" --stop.t_max 2e-2)
     "${run[@]}" -o full.h5 -q
     for sig in TERM INT; do
       rm -f part.h5.ckpt
@@ -117,7 +118,7 @@ case $case in
     grep -q "continuing from part.h5.ckpt at step" err.txt || fail "the same command line did not continue the run"
     h5diff --exclude-path /provenance full.h5 part.h5 || fail "the continued run differs"
     # Standard output has no checkpoint: SIGTERM still ends the run by the signal, leaving nothing.
-    "${run[@]}" --stop.t_max 0.05 -o - > piped.h5 2>err.txt &
+    "${base[@]}" --stop.t_max 0.05 -o - > piped.h5 2>err.txt &
     pid=$!
     sleep 1
     kill -TERM "$pid"

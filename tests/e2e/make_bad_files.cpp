@@ -1,7 +1,7 @@
 // Writes HDF5 files that the tools must refuse: a file of ours holding no mesh, a mesh file of an
 // unknown format version, meshes that break one invariant of mesh-gen check each (bad-*.h5, cell
-// meshes of an 8x4 block; bad-node-*.h5, node meshes), and run files whose mesh breaks one
-// (bad-run-*.h5). Used by the end-to-end bad-input tests.
+// meshes of an 8x4 block; bad-node-*.h5, node meshes), and run files whose mesh breaks one or whose
+// frames hold what no run writes (bad-run-*.h5). Used by the end-to-end bad-input tests.
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -92,26 +92,45 @@ int main(int argc, char** argv) {
   nodes("nan-spacing", [&](NodeMesh& m) { m.spacing = nan; });
   nodes("overflow", [](NodeMesh& m) { m.nx = std::int64_t{1} << 62, m.ny = 4; });  // nx * ny wraps to 0
 
-  // Run files holding a mesh with one NaN (an area, a node): every reader of runs refuses them.
-  {
+  // A copy of cell 5 stacked on it as a 33rd cell, without beams: every other invariant holds.
+  cells("stacked-cell", [](CellMesh& m) {
+    const auto poly = m.polygon(5);
+    m.vertex.insert(m.vertex.end(), poly.begin(), poly.end());
+    m.vertex_offset.push_back(static_cast<std::int64_t>(m.vertex.size()));
+    m.centroid.push_back(m.centroid[5]), m.area.push_back(m.area[5]), m.second_moment.push_back(m.second_moment[5]);
+  });
+
+  // DEM run files of 3 frames at rest (step k, t = 1e-6 k s), each spoiled in one way by `spoil` (the mesh at
+  // k = -1, then frame k): every reader of runs must refuse them.
+  using Spoil = std::function<void(CellMesh&, int, frac::io::BodyFrame&)>;
+  const auto dem_run = [&](const std::string& name, const Spoil& spoil) {
     CellMesh m = good;
-    m.area[5] = nan;
+    frac::io::BodyFrame f;
+    spoil(m, -1, f);
     const std::size_t n = m.cells(), b = m.beams();
     const std::vector<double> mass(n, 1e-3), inertia(n, 1e-8);
-    frac::io::OutputFile out(dir + "/bad-run-nan-area.h5");
+    frac::io::OutputFile out(dir + "/bad-run-" + name + ".h5");
     frac::io::write_header(out.root(), "run", frac::start_run("dem-run", "dem-run"), out.uuid());
     frac::io::RunWriter writer(out.root(), m, mass, inertia);
-    frac::io::BodyFrame f;
-    for (const auto& c : m.centroid) f.position.insert(f.position.end(), {c.x(), c.y()});
-    f.velocity.assign(2 * n, 0.0), f.angle.assign(n, 0.0), f.angular_velocity.assign(n, 0.0);
-    f.intact.assign(b, 1), f.strain.assign(b, 0.0);
     for (int k = 0; k < 3; ++k) {
+      f.position.clear();
+      for (const auto& c : m.centroid) f.position.insert(f.position.end(), {c.x(), c.y()});
+      f.velocity.assign(2 * n, 0.0), f.angle.assign(n, 0.0), f.angular_velocity.assign(n, 0.0);
+      f.intact.assign(b, 1), f.strain.assign(b, 0.0);
       f.step = k, f.time = 1e-6 * k;
+      spoil(m, k, f);
       writer.write_frame(f);
     }
     writer.finish();
     out.commit();
-  }
+  };
+  // A mesh with one NaN: every reader of runs refuses the run.
+  dem_run("nan-area", [&](CellMesh& m, int k, frac::io::BodyFrame&) { if (k < 0) m.area[5] = nan; });
+  // Frame states no run writes: an intact flag of 7, a negative time, a cell at a NaN position or angle.
+  dem_run("intact-7", [](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 2) f.intact[3] = 7; });
+  dem_run("negative-time", [](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 1) f.time = -1; });
+  dem_run("nan-position", [&](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 2) f.position[2 * 4] = nan; });
+  dem_run("nan-angle", [&](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 2) f.angle[6] = nan; });
   {
     NodeMesh m = frac::mesh::make_triangular_lattice({10, 6, 1e-3, "x", 0.0});
     m.position[7].y() = nan;

@@ -198,7 +198,7 @@ case $case in
     expect_refusal "missing.h5: no such file" "$hx" missing.h5 -o out.xmf
     expect_refusal "nomesh.h5: holds no mesh" "$hx" nomesh.h5 -o out.xmf
     expect_refusal "--flavour: unknown value" "$hx" run.h5 --flavour vtk -o out.xmf
-    expect_refusal "is the input file" "$hx" run.h5 -o run.h5
+    expect_refusal "is the input FILE" "$hx" run.h5 -o run.h5
     ;;
   *) fail "unknown case $case" ;;
 esac

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -94,6 +96,38 @@ State random_state(std::uint64_t seed, double broken = 0.5) {
 }
 
 double rel(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
+
+// A run on a 4 x 3 grid of three frames at rest (frame k at step 10 k, t = 0.1 k s), frame k spoiled by `spoil`.
+std::string write_grid_run(const fs::path& dir, const std::function<void(int, io::BodyFrame&)>& spoil) {
+  const std::string path = (dir / "run.h5").string();
+  const mesh::CellMesh m = square_grid(4, 3);
+  const std::size_t n = m.cells(), b = m.beams();
+  io::OutputFile out(path);
+  io::write_header(out.root(), "run", start_run("t", "t"), out.uuid());
+  io::RunWriter w(out.root(), m, std::vector<double>(n, 1.0), std::vector<double>(n, 0.2));
+  for (int k = 0; k < 3; ++k) {
+    io::BodyFrame f;
+    for (const auto& c : m.centroid) f.position.insert(f.position.end(), {c.x(), c.y()});
+    f.velocity.assign(2 * n, 0.0), f.angle.assign(n, 0.0), f.angular_velocity.assign(n, 0.0);
+    f.intact.assign(b, 1), f.strain.assign(b, 0.0);
+    f.step = 10 * k, f.time = 0.1 * k;
+    spoil(k, f);
+    w.write_frame(f);
+  }
+  w.finish();
+  out.commit();
+  return path;
+}
+
+// The message of the InputError `f` throws; "(no error)" if none.
+std::string input_error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 // Components by breadth-first search: an independent check of the union-find labels.
 std::vector<std::int64_t> bfs_components(const State& s) {
@@ -651,6 +685,40 @@ TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
     EXPECT_LE(rel(a.kinetic_energy_rotational[j], c.kinetic_energy_rotational[j]), 1e-12);
     for (int k = 0; k < 2; ++k) EXPECT_LE(rel(a.center_of_mass[2 * j + k], c.center_of_mass[2 * j + k]), 1e-12);
   }
+  fs::remove_all(dir);
+}
+
+TEST(FragmentsIo, RefusesIntactFlagsOtherThanZeroOrOne) {
+  const auto dir = temp_dir("intact");
+  const std::string path = write_grid_run(dir, [](int k, io::BodyFrame& f) { if (k == 1) f.intact[2] = 7; });
+  const io::Group root = io::open_input(path);
+  const io::RunInfo info = analysis::read_dem_run_info(root);
+  EXPECT_NO_THROW(analysis::read_fragment_input(root, info, 0));
+  const std::string expected =
+      path + ":/connectivity/beams/trajectory/intact/value: frame 1: beam 2: intact flag 7, expected 0 or 1";
+  EXPECT_EQ(input_error_of([&] { analysis::read_fragment_input(root, info, 1); }), expected);
+  const auto beam = analysis::read_beam_pairs(root, info.mass.size());
+  EXPECT_EQ(input_error_of([&] { analysis::fragment_time_series(root, info, beam, 1); }), expected);
+  fs::remove_all(dir);
+}
+
+TEST(FragmentsIo, RefusesFrameTimesAndStepsThatAreNegativeOrDecrease) {
+  const auto dir = temp_dir("times");
+  const auto refusal = [&](const std::function<void(int, io::BodyFrame&)>& spoil) {
+    const std::string path = write_grid_run(dir, spoil);
+    const std::string what = input_error_of([&] { analysis::read_dem_run_info(io::open_input(path)); });
+    return what.rfind(path + ":/particles/cells/position/", 0) == 0 ? what.substr(path.size()) : what;
+  };
+  const char* times = " (frame times must be finite, >= 0 and non-decreasing)";
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 1) f.time = -1; }),
+            ":/particles/cells/position/time: frame 1: t = -1 s after 0 s" + std::string(times));
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 0) f.time = std::numeric_limits<double>::quiet_NaN(); }),
+            ":/particles/cells/position/time: frame 0: t = nan s" + std::string(times));
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 2) f.time = 0.05; }),
+            ":/particles/cells/position/time: frame 2: t = 0.05 s after 0.1 s" + std::string(times));
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 2) f.step = 5; }),
+            ":/particles/cells/position/step: frame 2: step 5 after 10 (frame steps must be >= 0 and non-decreasing)");
+  EXPECT_EQ(refusal([](int, io::BodyFrame&) {}), "(no error)");
   fs::remove_all(dir);
 }
 

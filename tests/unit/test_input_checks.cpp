@@ -63,6 +63,24 @@ struct Tool {
   }
 };
 
+// The scene keys a command line (and its --config file) give, as dem-run collects them: the file's first.
+std::vector<std::pair<std::string, std::string>> scene_keys(std::vector<const char*> args) {
+  args.insert(args.begin(), "tool");
+  std::vector<std::pair<std::string, std::string>> keys;
+  const auto rest = cli::split_overrides(static_cast<int>(args.size()), args.data(), keys);
+  Tool t;
+  cli::parse(static_cast<int>(rest.size()), rest.data(), {"tool", "IN [options]", "", ""}, t.desc, t.positional, &keys);
+  return keys;
+}
+
+// A file of `text` in a fresh temporary folder.
+fs::path temp_file(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("fracture-test-config-" + make_uuid().substr(0, 8));
+  fs::create_directories(dir);
+  std::ofstream(dir / name, std::ios::binary) << text;
+  return dir / name;
+}
+
 std::string data_scene(const std::string& name) {
   return (fs::path(__FILE__).parent_path().parent_path().parent_path() / "data" / "scenes" / (name + ".ini")).string();
 }
@@ -111,6 +129,43 @@ TEST(OptionParsing, ConfigFileValuesAreCheckedToo) {
   fs::remove(path);
 }
 
+TEST(OptionParsing, EachSceneKeyOnceOnTheCommandLineAndOnceInTheConfigFile) {
+  EXPECT_EQ(error_of([] { scene_keys({"in.h5", "--material.t_eps", "0.02", "--material.t_eps=0.03"}); }),
+            "--material.t_eps: given twice on the command line ('0.02', then '0.03')");
+  const fs::path twice = temp_file("twice.cfg", "material.t_eps = 0.02\n[material]\nt_eps = 0.03\n");
+  EXPECT_EQ(error_of([&] { scene_keys({"in.h5", "--config", twice.c_str()}); }),
+            "--config " + twice.string() + ": key 'material.t_eps' is given twice");
+  // In the file and on the command line: the command line's comes last, and wins.
+  const fs::path once = temp_file("once.cfg", "[material]\nt_eps = 0.02\n");
+  const auto keys = scene_keys({"in.h5", "--config", once.c_str(), "--material.t_eps", "0.03"});
+  ASSERT_EQ(keys.size(), 2u);
+  Scene s = Scene::parse("[material]\nt_eps = 0.01\n", "s.ini");
+  for (const auto& [key, value] : keys) s.set(key, value);
+  EXPECT_EQ(s.number("material.t_eps"), 0.03);
+  fs::remove_all(twice.parent_path());
+  fs::remove_all(once.parent_path());
+}
+
+TEST(OptionParsing, TheConfigFileIsOneRegularTextFile) {
+  const fs::path nested = temp_file("nested.cfg", "config = other.cfg\n");
+  Tool t;
+  EXPECT_EQ(error_of([&] { t.parse({"in.h5", "--config", nested.c_str()}); }),
+            "--config " + nested.string() + ": 'config' cannot be set inside a config file (give one --config)");
+  const std::string dir = nested.parent_path().string();
+  Tool u;
+  EXPECT_EQ(error_of([&] { u.parse({"in.h5", "--config", dir.c_str()}); }),
+            "--config " + dir + ": is a directory, not a file of 'key = value' lines");
+  Tool v;
+  EXPECT_EQ(error_of([&] { v.parse({"in.h5", "--config", "/dev/null"}); }),
+            "--config /dev/null: not a regular file of 'key = value' lines");
+  const fs::path binary = temp_file("binary.cfg", std::string("level = 1\n\0\x01", 12));
+  Tool w;
+  EXPECT_NE(error_of([&] { w.parse({"in.h5", "--config", binary.c_str()}); }).find("holds a NUL byte"),
+            std::string::npos);
+  fs::remove_all(nested.parent_path());
+  fs::remove_all(binary.parent_path());
+}
+
 TEST(OptionCheck, IntervalsSayTheirEnds) {
   EXPECT_EQ(error_of([] { check_in(2, "--significance", Interval::open(0, 1)); }),
             "--significance: must lie in (0, 1), got 2");
@@ -150,7 +205,7 @@ TEST(SceneChecks, DemValuesBeyondThePhysicalLimits) {
   EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.density", "1e9"}}); }),
             "--material.density = '1e9': must lie in (0, 100000]");
   EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.beam_modulus", "1e20"}}); }),
-            "--material.beam_modulus = '1e20': must lie in [0, 1e+13]");
+            "--material.beam_modulus = '1e20': must lie in (0, 1e+13]");
   EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.gamma_n", "1e12"}}); }),
             "--material.gamma_n = '1e12': must lie in [0, 1e+09]");
   EXPECT_EQ(error_of([] { dem_scene("impact", {{"loading.impact_speed", "1e6"}}); }),
@@ -160,6 +215,20 @@ TEST(SceneChecks, DemValuesBeyondThePhysicalLimits) {
             std::string::npos);
   // Out-of-reach thresholds are a way to switch breaking off, not an error.
   EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.t_eps", "1e300"}}); }), "(no error)");
+}
+
+TEST(SceneChecks, ModuliOfZeroAndStepsThatNeverReachTheEnd) {
+  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.beam_modulus", "0"}}); }),
+            "--material.beam_modulus = '0': must be positive");
+  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.grain_modulus", "0"}}); }),
+            "--material.grain_modulus = '0': must be positive");
+  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"integrator.dt", "1e-300"}}); }),
+            "--integrator.dt = '1e-300': 5e+297 steps to reach stop.t_max = 0.005 s, more than 1e+12");
+  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"integrator.dt", "1e-14"}}); }), "(no error)");  // 5e11 steps
+  const mesh::NodeMesh m = mesh::make_triangular_lattice({20, 10, 1e-3, "x", 0.0});
+  Scene s = Scene::parse("[integrator]\ndt = 1e-300\n[stop]\nt_max = 1e-3\n", "r.ini");
+  EXPECT_EQ(error_of([&] { rubber::read_rubber_scene(s, m); }),
+            "r.ini: integrator.dt = '1e-300': 1e+297 steps to reach stop.t_max = 0.001 s, more than 1e+12");
 }
 
 TEST(SceneChecks, KicksFasterThanAnySolidAreRefused) {

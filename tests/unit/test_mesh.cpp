@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
+#include "mesh/cell_overlaps.hpp"
 #include "mesh/check.hpp"
 #include "mesh/random_lattice.hpp"
 #include "mesh/triangular_lattice.hpp"
@@ -311,6 +312,18 @@ TEST(RandomLattice, BadOptionsNameTheOption) {
   d.diameter = 0.4;
   d.cells = 0;
   expect_usage_error([&] { make_random_lattice(d); }, "--cells");
+}
+
+TEST(RandomLattice, OptionsTheMeshIgnoresAreRefused) {
+  using frac::mesh::refuse_ignored_options;
+  auto o = rect(4, 2, 0.4, 0.2, 1.0, 1);
+  EXPECT_NO_THROW(refuse_ignored_options(o, {"shape", "size", "cells", "seed", "disorder", "disorder-region"}));
+  expect_usage_error([&] { refuse_ignored_options(o, {"diameter"}); }, "--diameter: applies to --shape disc");
+  o.shape = "disc";
+  EXPECT_NO_THROW(refuse_ignored_options(o, {"shape", "diameter", "cells"}));
+  expect_usage_error([&] { refuse_ignored_options(o, {"size"}); }, "--size: applies to --shape rect");
+  o.disorder = 0;  // (a sweep over the disorder at one seed passes both at every level)
+  EXPECT_NO_THROW(refuse_ignored_options(o, {"disorder", "min-section", "seed", "disorder-region"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -632,6 +645,98 @@ TEST(Triangular, BadOptionsNameTheOption) {
   expect_usage_error([&] { make_triangular_lattice(o); }, "--rows-along");
 }
 
+// `m` with a copy of cell k as one more cell, stacked on it; without beams, so that every other invariant holds.
+CellMesh with_stacked_copy(CellMesh m, std::size_t k) {
+  const auto poly = m.polygon(k);
+  m.vertex.insert(m.vertex.end(), poly.begin(), poly.end());
+  m.vertex_offset.push_back(static_cast<std::int64_t>(m.vertex.size()));
+  m.centroid.push_back(m.centroid[k]), m.area.push_back(m.area[k]), m.second_moment.push_back(m.second_moment[k]);
+  return m;
+}
+
+TEST(MeshCheck, CellsStackedOrShiftedOntoOthersOverlap) {
+  const auto good = frac::mesh::make_random_lattice(rect(8, 4, 0.08, 0.04, 1.0, 5));
+  const auto stacked = with_stacked_copy(good, 5);
+  const auto r = frac::mesh::check_cell_mesh(stacked);
+  ASSERT_EQ(r.failures.size(), 1u);
+  EXPECT_EQ(r.failures[0].rfind("overlap: cells 5 and 32 overlap by ", 0), 0u) << r.failures[0];
+  EXPECT_NE(r.failures[0].find("m^2 (100% of the smaller), centroids 0 m apart"), std::string::npos) << r.failures[0];
+  // Moved by a fifth of the spacing, the copy overlaps cell 5 and some of its neighbours, and nothing else does.
+  auto shifted = stacked;
+  shifted.centroid.back() += Vec2(0.002, 0.0);
+  const auto s = frac::mesh::find_cell_overlaps(shifted, 1e-10, 0.01, 100);
+  ASSERT_GE(s.found.size(), 2u);
+  EXPECT_TRUE(s.complete);
+  for (const auto& o : s.found) {
+    EXPECT_EQ(o.b, 32u);
+    EXPECT_GT(o.area, 0.0);
+  }
+  EXPECT_EQ(s.found[0].a, 5u);
+}
+
+TEST(MeshCheck, NoOverlapInTheLatticesOfAnyDisorder) {
+  for (const double disorder : {0.0, 0.5, 1.0}) {
+    const auto m = frac::mesh::make_random_lattice(rect(30, 20, 0.3, 0.2, disorder, 3));
+    const auto s = frac::mesh::find_cell_overlaps(m, 1e-8 * m.spacing, m.spacing, 10);
+    EXPECT_TRUE(s.found.empty() && s.complete) << "disorder " << disorder;
+  }
+  RandomLatticeOptions d;
+  d.shape = "disc", d.diameter = 0.4, d.cells = 1100, d.disorder_region = "disc", d.seed = 7;
+  const auto disc = frac::mesh::make_random_lattice(d);
+  const auto s = frac::mesh::find_cell_overlaps(disc, 1e-8 * disc.spacing, disc.spacing, 10);
+  EXPECT_TRUE(s.found.empty() && s.complete);
+  EXPECT_LT(s.pairs, 64 * disc.cells());
+}
+
+// Unit squares (x, y) to (x + 1, y + 1) and one rectangle, for the wide-cell cases.
+std::vector<std::vector<Vec2>> squares_and(int nx, int ny, const std::vector<std::vector<Vec2>>& more) {
+  std::vector<std::vector<Vec2>> p;
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) p.push_back({Vec2(x, y), Vec2(x + 1, y), Vec2(x + 1, y + 1), Vec2(x, y + 1)});
+  p.insert(p.end(), more.begin(), more.end());
+  return p;
+}
+std::vector<Vec2> box(double x0, double y0, double x1, double y1) {
+  return {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
+}
+
+TEST(CellOverlaps, AWideCellIsComparedWithEveryCellInItsReach) {
+  // A 6 x 6 square over the middle of 20 x 20 unit squares: it covers 36 of them and touches 24 more.
+  const auto m = frac::mesh::make_cell_mesh(squares_and(20, 20, {box(7, 7, 13, 13)}), {}, {}, 1.0);
+  const auto s = frac::mesh::find_cell_overlaps(m, 1e-8, 1.0, 1000);
+  ASSERT_EQ(s.found.size(), 36u);
+  for (const auto& o : s.found) {
+    EXPECT_EQ(o.b, 400u);
+    EXPECT_NEAR(o.area, 1.0, 1e-12);
+  }
+  EXPECT_TRUE(s.complete);
+}
+
+TEST(CellOverlaps, CellsTooUnequalInSizeAreReportedNotCompared) {
+  // 700 unit squares in a row under 300 strips as long as the row: no overlap, but 300 x 700 pairs within reach,
+  // more than the linear budget.
+  std::vector<std::vector<Vec2>> strips;
+  for (int k = 0; k < 300; ++k) strips.push_back(box(0, 1 + 0.01 * k, 700, 1 + 0.01 * (k + 1)));
+  const auto m = frac::mesh::make_cell_mesh(squares_and(700, 1, strips), {}, {}, 1.0);
+  const auto s = frac::mesh::find_cell_overlaps(m, 1e-8, 1.0, 1000);
+  EXPECT_TRUE(s.found.empty());
+  EXPECT_FALSE(s.complete);
+  EXPECT_EQ(s.widest, 700u);
+  const std::string failure = first_failure(frac::mesh::check_cell_mesh(m));
+  EXPECT_EQ(failure.rfind("overlap: not checked: cell 700 reaches so far beyond the others", 0), 0u) << failure;
+}
+
+TEST(CellOverlaps, CentroidsOfAnyFiniteValueAreSafe) {
+  // Centroids 2e308 m apart (their distance overflows) and huge cells: no overflow into an index, an answer.
+  for (const double far : {1e308, 1.7e308}) {
+    auto m = frac::mesh::make_cell_mesh(squares_and(4, 1, {}), {}, {}, 1.0);
+    m.centroid[0].x() = -far, m.centroid[3].x() = far;
+    EXPECT_TRUE(frac::mesh::find_cell_overlaps(m, 1e-8, 1.0, 10).found.empty());
+    for (auto& v : m.vertex) v *= 1e300;
+    frac::mesh::find_cell_overlaps(m, 1e-8, 1.0, 10);
+  }
+}
+
 // Not a test: time make_random_lattice (and the check) for 10^4, 10^5, 10^6 cells. Run with
 //   unit_tests --gtest_also_run_disabled_tests --gtest_filter='*RandomLatticeTiming*'
 TEST(RandomLattice, DISABLED_RandomLatticeTiming) {
@@ -641,9 +746,12 @@ TEST(RandomLattice, DISABLED_RandomLatticeTiming) {
     const auto t1 = std::chrono::steady_clock::now();
     const auto report = frac::mesh::check_cell_mesh(m);
     const auto t2 = std::chrono::steady_clock::now();
+    frac::mesh::find_cell_overlaps(m, 1e-8 * m.spacing, m.spacing, 10);
+    const auto t3 = std::chrono::steady_clock::now();
     std::cout << m.cells() << " cells, " << m.beams() << " beams: make "
               << std::chrono::duration<double>(t1 - t0).count() << " s, check "
-              << std::chrono::duration<double>(t2 - t1).count() << " s, ok " << report.ok() << "\n";
+              << std::chrono::duration<double>(t2 - t1).count() << " s (of which the overlap search "
+              << std::chrono::duration<double>(t3 - t2).count() << " s), ok " << report.ok() << "\n";
   }
 }
 

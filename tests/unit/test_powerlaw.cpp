@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <numeric>
 #include <sstream>
 
@@ -154,6 +155,27 @@ TEST(PowerlawInput, DriverRefusesNonIntegersForTheDiscreteModelAndCountsXmaxExcl
   EXPECT_EQ(r.n_above_xmax, n_above);
   EXPECT_EQ(r.n_values + r.n_above_xmax, 200);
   EXPECT_EQ(r.primary, "continuous_mle");
+}
+
+TEST(PowerlawInput, TextColumnBounded) {
+  // A stream that is no column of numbers is refused after a bounded read.
+  const auto refused = [](const std::string& text, std::size_t max_values, const std::string& why) {
+    std::istringstream in(text);
+    try {
+      analysis::read_number_column(in, "s", max_values);
+      ADD_FAILURE() << "accepted: " << why;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  refused(std::string(5000, '1') + "\n", 10, "line 1 is longer than 4096 characters");
+  refused(std::string("1\n2\0\n", 5), 10, "line 2 holds a NUL byte");
+  std::string endless;
+  for (int k = 0; k < 2000; ++k) endless += "y\n";
+  refused(endless, 10, "at least 1000 lines are not a single number (first: line 1: 'y')");
+  refused("1\n2\n3\n4\n", 3, "more than 3 values");
+  std::istringstream three("1\n2\n3");
+  EXPECT_EQ(analysis::read_number_column(three, "s", 3).size(), 3u);
 }
 
 TEST(PowerlawInput, TextColumnCommentsAndBadLines) {
@@ -935,5 +957,38 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   EXPECT_NE(text.str().find("\nalpha " ), std::string::npos);
   EXPECT_NE(text.str().find("beta = alpha"), std::string::npos);
   EXPECT_NE(text.str().find("\nn_excluded_min_cells " + std::to_string(singles) + "\n"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(PowerlawFit, EachInputIsPooledOnce) {
+  const fs::path dir = fs::temp_directory_path() / ("fracture-test-powerlaw-" + make_uuid().substr(0, 8));
+  fs::create_directories(dir);
+  const std::string a = (dir / "a.h5").string(), b = (dir / "b.h5").string(), c = (dir / "c.h5").string();
+  for (const std::string& path : {a, c}) {
+    io::OutputFile out(path);
+    io::write_header(out.root(), "fragments", start_run("test", "test"), out.uuid());
+    out.commit();
+  }
+  fs::copy_file(a, b);  // a copy: the same /provenance file_uuid
+  fs::create_symlink(a, dir / "link.h5");
+  const auto error_of = [](const std::function<void()>& f) -> std::string {
+    try {
+      f();
+    } catch (const UsageError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  const std::string dot = (dir / "." / "a.h5").string(), link = (dir / "link.h5").string();
+  EXPECT_EQ(error_of([&] { DistinctInputs({a, c, dot}); }),
+            "inputs '" + a + "' and '" + dot + "' are one file: pooled twice, its values would count twice");
+  EXPECT_NE(error_of([&] { DistinctInputs({link, a}); }).find("are one file"), std::string::npos);
+  DistinctInputs copies({a, c, b});
+  copies.add(0, io::open_input(a));
+  copies.add(1, io::open_input(c));
+  const std::string uuid = io::read_provenance(io::open_input(a)).file_uuid;
+  EXPECT_EQ(error_of([&] { copies.add(2, io::open_input(b)); }),
+            "inputs '" + a + "' and '" + b + "' are copies of one file (the same /provenance file_uuid " + uuid +
+                "): pooled twice, its values would count twice");
   fs::remove_all(dir);
 }

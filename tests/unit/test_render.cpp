@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -54,7 +56,7 @@ struct SmallRun {
   std::string path;
 };
 
-SmallRun write_small_run(const fs::path& dir) {
+SmallRun write_small_run(const fs::path& dir, const std::function<void(io::BodyFrame&)>& spoil_frame_1 = {}) {
   SmallRun r;
   r.path = (dir / "run.h5").string();
   const auto& m = r.mesh;
@@ -82,6 +84,7 @@ SmallRun write_small_run(const fs::path& dir) {
   f.strain[0] = 0.02;
   f.strain[1] = -0.01;
   f.intact[3] = 0;
+  if (spoil_frame_1) spoil_frame_1(f);
   w.write_frame(f);
   w.finish();
   out.commit();
@@ -245,6 +248,27 @@ TEST(RenderPicture, FrameOfASmallRun) {
   bad.colour = "vertex_offset";  // N + 1 values
   EXPECT_THROW(render::RunPicture(root, std::nullopt, bad), UsageError);
   EXPECT_THROW(render::link_mode_from_text("maybe"), UsageError);
+  fs::remove_all(dir);
+}
+
+TEST(RenderPicture, RefusesACellAtANonFinitePositionOrAngle) {
+  const auto dir = render_temp_dir("nan");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const bool angle : {false, true}) {
+    const SmallRun r = write_small_run(dir, [&](io::BodyFrame& f) { (angle ? f.angle[2] : f.position[5]) = nan; });
+    const io::Group root = io::open_input(r.path);
+    const render::RunPicture picture(root, std::nullopt, {});
+    EXPECT_NO_THROW(picture.figure(0));
+    const std::string expected = r.path + (angle ? ":/particles/cells/angle: frame 1 (t = 0.5 s): cell 2: angle nan"
+                                                 : ":/particles/cells/position: frame 1 (t = 0.5 s): cell 2: (0.5, nan)") +
+                                 " is not finite";
+    try {
+      picture.figure(1);
+      ADD_FAILURE() << "drew a frame holding a NaN";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
   fs::remove_all(dir);
 }
 
