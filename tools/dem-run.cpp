@@ -1,7 +1,10 @@
 // dem-run: the polygon DEM of Kun, D'Addetta, Herrmann and Ramm (1999) on a Voronoi mesh, under a scene.
+#include <iostream>
+
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "core/progress.hpp"
 #include "core/scene_tool.hpp"
 #include "dem/run_file.hpp"
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
         dem::run_to_file(sim, scene, cli::scene_run("dem-run", args, scene), in, args.common.output,
                          args.checkpoint, progress);
     progress.finish(dem::summary_line(s, sim));
+    if (args.profile) write_phase_table(std::cerr, "dem-run: phases of " + std::to_string(s.steps) + " steps", s.phases);
     return kExitOk;
   });
 }

@@ -31,8 +31,7 @@ int main(int argc, char** argv) {
         "  mesh-gen triangular --nodes 200x40 --spacing 1e-3 | rubber-run --scene data/scenes/stretch.ini - "
         "--loading.stretch_y 3.5 --physics.damping on -o crack.h5"};
     const cli::SceneToolArgs args = cli::parse_scene_tool(argc, argv, spec);
-    set_threads(1);  // The shared thread team (the integrator's loops) stays on one thread: the model's own pool
-                     // runs --threads workers, and idle workers spinning beside it would slow them
+    set_threads(args.common.threads);
 
     Scene scene = cli::load_scene(args);
     const io::Group in = io::open_input(args.input);

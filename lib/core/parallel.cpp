@@ -6,10 +6,18 @@
 
 namespace frac {
 
+namespace {
+thread_local int g_serial = 0;  // serial sections open on this thread
+}  // namespace
+
+SerialSection::SerialSection() { ++g_serial; }
+SerialSection::~SerialSection() { --g_serial; }
+bool in_serial_section() { return g_serial > 0; }
+
 int max_threads() { return omp_get_max_threads(); }
-int thread_count() { return omp_get_num_threads(); }
-int thread_index() { return omp_get_thread_num(); }
-bool in_parallel() { return omp_in_parallel() != 0; }
+int thread_count() { return g_serial ? 1 : omp_get_num_threads(); }
+int thread_index() { return g_serial ? 0 : omp_get_thread_num(); }
+bool in_parallel() { return g_serial == 0 && omp_in_parallel() != 0; }
 unsigned processor_count() { return static_cast<unsigned>(omp_get_num_procs()); }
 
 PartLayout::PartLayout(std::size_t n, std::size_t blocks, std::size_t threads)

@@ -18,10 +18,22 @@ inline constexpr std::size_t kMinParallelCoordinates = 4 * kMinParallelItems;
 
 // The thread queries, for code that splits work by hand. max_threads: the size of the teams as_team makes.
 int max_threads();
-int thread_count();  // threads of the enclosing parallel region; 1 outside one
+int thread_count();  // threads of the enclosing parallel region; 1 outside one (or in a serial section)
 int thread_index();  // this thread's number in it
-bool in_parallel();  // inside an active parallel region (one with more than one thread)
+bool in_parallel();  // inside an active parallel region (one with more than one thread), not in a serial section
 unsigned processor_count();  // processors this process may run on
+
+// While one lives, this thread runs alone, as outside any region, though its team waits for it (a serial phase of
+// core/phases): the queries above answer 1, 0 and false, team functions do all the work on it, and team_barrier
+// and as_team wait for no other thread.
+class SerialSection {
+ public:
+  SerialSection();
+  ~SerialSection();
+  SerialSection(const SerialSection&) = delete;
+  SerialSection& operator=(const SerialSection&) = delete;
+};
+bool in_serial_section();
 
 // Sets the number of threads of the force loops' teams: `requested`, or every core for 0; and puts each of them,
 // and the caller, in the simulation's floating-point mode (core/float_mode.hpp: subnormals flushed to zero).
@@ -77,7 +89,7 @@ inline double sum_of_blocks(const double* out, std::size_t count, std::size_t bl
 // one thread: the caller alone.) `body` must not throw (an exception out of a parallel region ends the program).
 template <class Body>
 void as_team(bool worth, Body&& body) {
-  if (in_parallel() || !worth || max_threads() == 1) {
+  if (in_parallel() || in_serial_section() || !worth || max_threads() == 1) {
     body();
     return;
   }
@@ -86,8 +98,9 @@ void as_team(bool worth, Body&& body) {
 }
 
 // Inside a team function: returns when every thread of the region has called it, what each wrote before visible
-// to all after; nothing to wait for outside a region.
+// to all after; nothing to wait for outside a region (or in a serial section).
 inline void team_barrier() {
+  if (in_serial_section()) return;
 #pragma omp barrier
 }
 
@@ -116,13 +129,19 @@ class TeamSlots {
 // static_range(len, t, nt): the cells the per-cell loops of the forces (schedule(static)) give it, so each
 // thread reads the values it wrote, in its own cache, instead of the other thread's. Element by element
 // work gives the same bits whatever the split. (blocks = 0, or n not a multiple of it: one block.)
-// Inside a parallel region: calls range(first, last) on this thread's part of every block.
+// coordinate_ranges: range(first, last) on thread t's part of every block in a team of nt; this_thread_...: this
+// thread's part in the enclosing region.
 template <class Body>
-void this_thread_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
+void coordinate_ranges(std::size_t n, std::size_t blocks, std::size_t t, std::size_t nt, Body&& range) {
   if (blocks == 0 || n % blocks != 0) blocks = 1;
   const std::size_t len = n / blocks;
-  const Range r = static_range(len, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
+  const Range r = static_range(len, t, nt);
   for (std::size_t b = 0; b < blocks; ++b) range(b * len + r.first, b * len + r.last);
+}
+template <class Body>
+void this_thread_coordinate_ranges(std::size_t n, std::size_t blocks, Body&& range) {
+  coordinate_ranges(n, blocks, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()),
+                    range);
 }
 
 // An array only per-coordinate loops touch (gear5's higher derivatives) laid out with the threads' parts apart.

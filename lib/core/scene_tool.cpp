@@ -18,7 +18,9 @@ SceneToolArgs parse_scene_tool(int argc, const char* const* argv, const ToolSpec
       "checkpoint", po::value(&a.checkpoint.path)->value_name("FILE"),
       "the checkpoint file (default: the output's name + .ckpt; none for -o -)")(
       "resume", po::value(&a.checkpoint.resume)->value_name("FILE"),
-      "continue the run of this checkpoint (the same command line finds the default checkpoint by itself)");
+      "continue the run of this checkpoint (the same command line finds the default checkpoint by itself)")(
+      "profile", po::bool_switch(&a.profile),
+      "at the end, print the time of each phase of a step (core/phases) and the share of the serial ones");
   po::positional_options_description positional;
   positional.add("input", 1);
   parse(static_cast<int>(args.size()), args.data(), spec, desc, positional, &a.overrides);

@@ -20,6 +20,7 @@ struct SceneToolArgs {
   CheckpointOptions checkpoint;
   std::vector<std::pair<std::string, std::string>> overrides;  // scene keys of the command line and --config
   std::string command_line;
+  bool profile = false;  // --profile: the time of each phase of a step, at the end
 };
 SceneToolArgs parse_scene_tool(int argc, const char* const* argv, const ToolSpec& spec);
 

@@ -132,9 +132,10 @@ void Beams::set_forces(std::span<const double> q, std::span<double> f) const { f
 
 void Beams::forces(std::span<const double> q, std::span<double> f, bool add) const {
   as_team(active_.size() > kMinParallelItems || n_ > kMinParallelItems, [&] {
-    beam_pass(q);
+    const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
+    beam_pass(q, t, nt);
     team_barrier();
-    gather(f, add);
+    gather(f, add, t, nt);
   });
 }
 
@@ -259,17 +260,17 @@ void Beams::each_response(std::span<const double> q, const BeamTable& t, std::si
   });
 }
 
-void Beams::beam_pass(std::span<const double> q) const {
+void Beams::beam_pass(std::span<const double> q, std::size_t t, std::size_t nt) const {
   // Forces in parallel (each beam its own slot); each cell then gathers its intact beams in beam order (gather):
   // the same bits whatever the thread count.
   BeamForce* out = force_.data();
-  const Range mine = this_thread_range(active_.size());
+  const Range mine = static_range(active_.size(), t, nt);
   each_response<BeamResponsePart::forces>(
       q, active_, mine.first, mine.last,
       [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
 }
 
-void Beams::gather(std::span<double> f, bool add) const {
+void Beams::gather(std::span<double> f, bool add, std::size_t t, std::size_t nt) const {
   double* fx = f.data();
   double* fy = fx + n_;
   double* tz = fy + n_;
@@ -279,7 +280,7 @@ void Beams::gather(std::span<double> f, bool add) const {
   const std::int32_t* beams_in = cell_count_.data();
   const CellBeam* beams_of = beams_of_.data();
   const BeamForce* out = force_.data();
-  const Range mine = this_thread_range(n_);
+  const Range mine = static_range(n_, t, nt);
   for (std::size_t c = mine.first; c < mine.last; ++c) {
     double sx = add ? fx[c] : 0.0, sy = add ? fy[c] : 0.0, st = add ? tz[c] : 0.0;
     for (auto s = start[c]; s < start[c] + beams_in[c]; ++s) {
@@ -334,23 +335,31 @@ void Beams::strains(std::span<const double> q, std::span<double> out) const {
 }
 
 void Beams::break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken) {
-  reserve_breaks();
-  as_team(active_.size() > kMinParallelItems, [&] { find_breaks(q, t_eps, t_theta); });
-  apply_breaks(broken);
+  bind_breaking(q, t_eps, t_theta, broken);
+  breaking_phases().run(team_size(active_.size() > kMinParallelItems));
 }
 
-void Beams::reserve_breaks() {
-  const auto most = static_cast<std::size_t>(max_threads());
-  breaking_.reserve(most);  // (each thread's list grows with the beams it finds breaking: few, mostly)
+void Beams::bind_breaking(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken) {
+  breaking_state_ = {q, t_eps, t_theta, &broken};
+  breaking_.reserve(static_cast<std::size_t>(max_threads()));  // (each thread's list grows with the beams it finds)
 }
 
-void Beams::find_breaks(std::span<const double> q, double t_eps, double t_theta) {
+Phases Beams::breaking_phases() {
+  Phases p;
+  p.add({"beams: breaking verdicts", false, [this](std::size_t t, std::size_t nt) { find_breaks(t, nt); }, {}});
+  p.add({"beams: break", true, [this](std::size_t, std::size_t nt) { apply_breaks(nt); }, {}});
+  return p;
+}
+
+void Beams::find_breaks(std::size_t t, std::size_t nt) {
   // The verdicts in parallel (in blocks, the bound that clears most beams as a vector loop, then the exact rule
   // for the others), each thread listing the entries of its part that break; then (apply_breaks), in list
   // order, the beams marked broken: the same bits whatever the thread count.
+  const std::span<const double> q = breaking_state_.q;
+  const double t_eps = breaking_state_.t_eps, t_theta = breaking_state_.t_theta;
   const std::size_t count = active_.size();
-  const Range mine = this_thread_range(count);
-  std::vector<Breaking>& out = breaking_.mine();
+  const Range mine = static_range(count, t, nt);
+  std::vector<Breaking>& out = breaking_[t];
   out.clear();
   each_block(q, active_, mine.first, mine.last, [&](std::size_t start, std::size_t n, ResponseBlock& blk) {
     bound_breaking(n, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, t_eps, t_theta, blk.near);
@@ -364,11 +373,11 @@ void Beams::find_breaks(std::span<const double> q, double t_eps, double t_theta)
       if (v.mode != 0) out.push_back({start + k, v});
     }
   });
-  if (thread_index() == 0) break_teams_ = static_cast<std::size_t>(thread_count());
 }
 
-void Beams::apply_breaks(std::vector<BeamBreak>& broken) {
-  for (std::size_t t = 0; t < break_teams_; ++t) {
+void Beams::apply_breaks(std::size_t nt) {
+  std::vector<BeamBreak>& broken = *breaking_state_.broken;
+  for (std::size_t t = 0; t < nt; ++t) {
     for (const Breaking& e : breaking_[t]) {
       const auto b = static_cast<std::size_t>(active_.beam[e.entry]);
       intact_[b] = 0;

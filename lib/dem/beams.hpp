@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "core/state_archive.hpp"
 #include "dem/beam.hpp"
 #include "dem/bodies.hpp"
@@ -42,18 +43,23 @@ class Beams {
   // The same forces written into f, replacing what is there (the same bits as add_forces onto zeros). Both
   // run on threads of their own: call them outside a parallel region.
   void set_forces(std::span<const double> q, std::span<double> f) const;
-  // The same in parts, team functions (core/parallel.hpp) for a caller that runs other work on the team in
-  // between: beam_pass, each beam's force at q (this thread's part of the beams);
-  // after a barrier, gather, each of this thread's cells its beams' forces, onto f (add) or into it. No barrier
-  // at their ends.
-  void beam_pass(std::span<const double> q) const;
-  void gather(std::span<double> f, bool add) const;
+  // The same as two phases of a step (core/phases), thread t's part of a team of nt: beam_pass, each beam's
+  // force at q (t's part of the beams); in a later phase, gather, each of t's cells its beams' forces, onto f
+  // (add) or into it.
+  void beam_pass(std::span<const double> q, std::size_t t, std::size_t nt) const;
+  void gather(std::span<double> f, bool add, std::size_t t, std::size_t nt) const;
   // Elastic energy of the intact beams at q, J.
   double energy(std::span<const double> q) const;
   // Strain of every beam at q (broken beams too, for pictures).
   void strains(std::span<const double> q, std::span<double> out) const;
   // Breaks, for good, every intact beam that satisfies the rule at q; appends them to `broken`.
   void break_beams(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken);
+  // The same as phases of a step (core/phases): bind_breaking before each run (outside the team); "beams:
+  // breaking verdicts" (each thread its part of the intact beams, in blocks), then "beams: break" (serial: the
+  // beams found, in list order, marked broken and appended to `broken`). The phases call this object: take
+  // them once it is in place.
+  void bind_breaking(std::span<const double> q, double t_eps, double t_theta, std::vector<BeamBreak>& broken);
+  Phases breaking_phases();
   // Breaks one beam (tests, and a scene's explicit cut).
   void remove(std::size_t b);
   // Marks every beam broken (a scene without beams: no cohesion, every cell its own fragment).
@@ -139,12 +145,14 @@ class Beams {
     Verdict verdict;
   };
   TeamSlots<std::vector<Breaking>> breaking_;
-  std::size_t break_teams_ = 0;  // threads of the team of the last find_breaks
-  // break_beams in parts: reserve_breaks before the team; find_breaks, a team function (each thread the verdicts
-  // of its part of the beams); apply_breaks after it.
-  void reserve_breaks();
-  void find_breaks(std::span<const double> q, double t_eps, double t_theta);
-  void apply_breaks(std::vector<BeamBreak>& broken);
+  // The bodies of the breaking phases, at the bound state; thread t of a team of nt.
+  void find_breaks(std::size_t t, std::size_t nt);
+  void apply_breaks(std::size_t nt);
+  struct BreakingState {
+    std::span<const double> q;
+    double t_eps = 0, t_theta = 0;
+    std::vector<BeamBreak>* broken = nullptr;
+  } breaking_state_;
   std::size_t broken_in_active_ = 0;
   void compact_active();  // the broken beams of active_ moved to retired_
 };

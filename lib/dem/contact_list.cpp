@@ -96,10 +96,9 @@ void add_contact_range(const ContactList& c, std::size_t first_contact, std::siz
 }  // namespace
 
 void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f,
-                                Range blocks) {
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  const Range cells = this_thread_range(n);
-  for (std::size_t b = blocks.first; b < std::min(blocks.last, nt); ++b) {
+                                std::size_t t, std::size_t nt) {
+  const Range cells = static_range(n, t, nt);
+  for (std::size_t b = 0; b < nt; ++b) {
     const Range r = b == t ? c.block[b] : c.touch[b * nt + t];
     add_contact_range(c, r.first, r.last, n, q, f, cells);
   }

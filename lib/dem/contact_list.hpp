@@ -61,9 +61,9 @@ struct ContactList {
 
 // Law l's power summed over the list, in block order.
 double law_power(const ContactList& c, std::size_t law);
-// A team function, after a barrier behind every law: the sums of law l's power over the blocks of the list
-// (its first `count` contacts) that start in `mine`, this thread's part of it. After the team,
-// law_power_of_blocks adds them up in block order: the same bits as law_power.
+// In a phase after every law's: the sums of law l's power over the blocks of the list (its first `count`
+// contacts) that start in `mine`, a thread's part of it. After the team, law_power_of_blocks adds them up in
+// block order: the same bits as law_power.
 void law_block_powers(ContactList& c, std::size_t law, std::size_t count, Range mine);
 double law_power_of_blocks(const ContactList& c, std::size_t law);
 
@@ -74,11 +74,10 @@ void add_contact_forces(const ContactList& c, std::size_t n, std::span<const dou
 // thread its cells, the same bits as the whole pass).
 void add_contact_forces(const ContactList& c, std::size_t count, std::size_t n, std::span<const double> q,
                         std::span<double> f, Range cells);
-// The same, a team function on the team that filled the list (after a barrier behind every law): each thread
-// onto its part of the cells, reading its own block and, of the others, only the entries that touch its cells
-// (ContactList::touch). The blocks [blocks.first, blocks.last) only, in block order (a caller that adds the
-// first block before that barrier, on the first thread, and the others after it, adds them in the same order).
+// The same, thread t's part of a phase on a team of nt, the team that filled the list (in a phase after every
+// law's): onto t's part of the cells, reading its own block and, of the others, only the entries that touch its
+// cells (ContactList::touch), in block order.
 void add_contact_forces_of_team(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f,
-                                Range blocks = {0, SIZE_MAX});
+                                std::size_t t, std::size_t nt);
 
 }  // namespace frac::dem

@@ -26,13 +26,17 @@ ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
   }
 }
 
-// Vertices of this thread's cells in world coordinates.
-void ContactSearch::world_vertices(std::span<const double> q) {
+// Thread t's part of the first phase: the vertices of its cells in world coordinates, and how far they moved.
+void ContactSearch::vertices(std::size_t t, std::size_t nt) {
+  blocks_[t] = Block{};
+  candidates_[t] = 0;
   const std::size_t n = bodies_->n;
-  const double* x = q.data();
+  if (n < 2) return;
+  list_.measure_moves(q_, t, nt);
+  const double* x = q_.data();
   const double* y = x + n;
   const double* phi = y + n;
-  const Range mine = this_thread_range(n);
+  const Range mine = static_range(n, t, nt);
   // (Raw pointers and the centroid in locals: a store to world may alias x and y, which would be reloaded.)
   const auto* offset = mesh_->vertex_offset.data();
   const Vec2* body = mesh_->vertex.data();
@@ -123,8 +127,6 @@ void ContactSearch::reserve_threads(std::size_t threads, ContactList& out) {
   if (blocks_.size() < threads) blocks_.resize(threads);
   if (out.block.size() < threads) out.block.resize(threads);
   if (out.touch.size() < threads * threads) out.touch.resize(threads * threads);
-  own_contacts_.reserve(threads);
-  room_.reserve(threads);
   if (staged_.size() < threads) staged_.resize(threads);
   list_.reserve_threads(threads);
   candidates_.reserve(threads);
@@ -149,33 +151,43 @@ void ContactSearch::visit_state(StateArchive& archive) {
   }
 }
 
-void ContactSearch::find(std::span<const double> q, ContactList& out) {
+void ContactSearch::bind(std::span<const double> q, ContactList& out) {
+  q_ = q;
+  out_ = &out;
   reserve_threads(static_cast<std::size_t>(max_threads()), out);
-  as_team(bodies_->n > kMinParallelItems, [&] {
-    find_start(q);
-    team_barrier();
-    find_finish(q, out);
-  });
-  find_end(out);
 }
 
-void ContactSearch::find_start(std::span<const double> q) {
-  const auto t = static_cast<std::size_t>(thread_index());
-  if (t == 0) teams_ = static_cast<std::size_t>(thread_count());
-  blocks_[t] = Block{};
-  candidates_.mine() = 0;
-  if (bodies_->n < 2) return;
-  world_vertices(q);
-  list_.measure_moves(q);
+Phases ContactSearch::start_phases() {
+  Phases p;
+  p.add({"contact search: vertices", false, [this](std::size_t t, std::size_t nt) { vertices(t, nt); }, {}});
+  return p;
 }
 
-void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
-  Block& block = blocks_[t];
-  out.block[t] = {0, 0};
+Phases ContactSearch::finish_phases() {
+  Phases p;
+  p.add({"neighbour list: grid", true, [this](std::size_t, std::size_t) { list_.build_grid(q_); },
+         [this] { return bodies_->n >= 2 && list_.stale(static_cast<std::size_t>(thread_count())); }});
+  p.add({"neighbour list: pairs", false,
+         [this](std::size_t t, std::size_t nt) { list_.find_pairs(q_, world_polygons(), t, nt); },
+         [this] { return list_.rebuilding(); }});
+  p.add({"neighbour list: join", true, [this](std::size_t, std::size_t nt) { list_.join(nt); },
+         [this] { return list_.rebuilding(); }});
+  p.add({"contact search: pairs", false, [this](std::size_t t, std::size_t nt) { test_pairs(t, nt); }, {}});
+  p.add({"contact list: room", true, [this](std::size_t, std::size_t nt) { count(nt); }, {}});
+  p.add({"contact list: fill", false, [this](std::size_t t, std::size_t nt) { fill(t, nt); }, {}});
+  return p;
+}
+
+void ContactSearch::find(std::span<const double> q, ContactList& out) {
+  bind(q, out);
+  Phases phases = start_phases();
+  phases.add(finish_phases());
+  phases.run(team_size(bodies_->n > kMinParallelItems));
+}
+
+void ContactSearch::test_pairs(std::size_t t, std::size_t nt) {
   if (bodies_->n < 2) return;
-  if (list_.stale()) list_.rebuild(q, world_polygons());
-  const double* x = q.data();
+  const double* x = q_.data();
   const double* y = x + bodies_->n;
   const double g = bodies_->length_scale;
   const double slack = 0.25 * geometry::kOverlapAreaTolerance * g * g / std::max(bodies_->max_bound_radius, 1e-300);
@@ -183,43 +195,55 @@ void ContactSearch::find_finish(std::span<const double> q, ContactList& out) {
   // the others into lists of their own, copied in behind it once every thread has counted its contacts. Every
   // list grows with its contacts (they are far fewer than the pairs), so the list's room follows the contacts.
   const Range part = balanced_part(t, nt);
-  Fill fill{t == 0 ? &out : &staged_[t], 0, 0, 0};
+  Fill fill{t == 0 ? out_ : &staged_[t], 0, 0, 0};
   std::int64_t candidates = 0;
   // (The contacts of each chunk of pairs counted for the next evaluation's split: this thread's chunks only.)
   const std::size_t pairs = list_.size(), chunks = (pairs + kChunkPairs - 1) / kChunkPairs;
   std::vector<std::uint32_t>& counts = chunk_contacts_[parity_];
-  const bool count = counts.size() == chunks;
+  const bool counted = counts.size() == chunks;
   for (std::size_t c = part.first / kChunkPairs; c * kChunkPairs < part.last; ++c) {
     const std::size_t before = fill.next;
     for (std::size_t p = c * kChunkPairs; p < std::min(part.last, (c + 1) * kChunkPairs); ++p)
       candidates += test_pair(p, x, y, slack, fill);
-    if (count) counts[c] = static_cast<std::uint32_t>(fill.next - before);
+    if (counted) counts[c] = static_cast<std::uint32_t>(fill.next - before);
   }
-  candidates_.mine() = candidates;
-  const std::size_t own = fill.next;
-  if (nt > 1) {
-    own_contacts_.mine() = own;
-    if (t == 0) room_.mine() = out.room();  // (no thread writes the list's arrays until after the barrier)
-    team_barrier();
-    std::size_t offset = 0, total = 0;
-    for (std::size_t u = 0; u < nt; ++u) {
-      if (u < t) offset += own_contacts_[u];
-      total += own_contacts_[u];
-    }
-    if (total > room_[0]) {  // (the same verdict on every thread: one barrier or none)
-      if (t == 0) out.reserve(total + total / 4);
-      team_barrier();
-    }
-    if (t > 0) out.copy_entries(staged_[t], own, offset);
-    block.offset = static_cast<std::int64_t>(offset);
-    fill.next = offset + own;
+  candidates_[t] = candidates;
+  blocks_[t] = {static_cast<std::int64_t>(fill.next), fill.enclosed, fill.multi_crossing, 0};
+}
+
+void ContactSearch::count(std::size_t nt) {
+  list_.end_rebuild();  // (every thread has passed the rebuild's phases)
+  ContactList& out = *out_;
+  std::int64_t total = 0, candidates = 0, enclosed = 0, multi_crossing = 0;
+  for (std::size_t b = 0; b < nt; ++b) {
+    blocks_[b].offset = total;
+    total += blocks_[b].count;
+    candidates += candidates_[b];
+    enclosed += blocks_[b].enclosed;
+    multi_crossing += blocks_[b].multi_crossing;
   }
-  block.enclosed = fill.enclosed;
-  block.multi_crossing = fill.multi_crossing;
-  const std::size_t first = static_cast<std::size_t>(block.offset);
-  block.count = static_cast<std::int64_t>(fill.next - first);
-  out.block[t] = {first, fill.next};
-  if (nt > 1) set_touch(out, first, fill.next, nt);
+  // (The first thread's contacts are in the list already, grown as it filled; the others' go in behind them.)
+  const auto size = static_cast<std::size_t>(total);
+  if (size > out.room()) out.reserve(size + size / 4);
+  out.count_ = size;
+  // The counts just taken are the next split's; the other array takes the next ones (sized to the list).
+  const std::size_t chunks = (list_.size() + kChunkPairs - 1) / kChunkPairs;
+  if (chunk_contacts_[parity_].size() != chunks) chunk_contacts_[parity_].assign(chunks, 0);
+  parity_ ^= 1;
+  if (chunk_contacts_[parity_].size() != chunks) chunk_contacts_[parity_].assign(chunks, 0);
+  out.blocks = nt;
+  out.candidate_pairs = candidates;
+  out.enclosed = enclosed;
+  out.multi_crossing = multi_crossing;
+}
+
+void ContactSearch::fill(std::size_t t, std::size_t nt) {
+  ContactList& out = *out_;
+  const Block& block = blocks_[t];
+  const auto first = static_cast<std::size_t>(block.offset), own = static_cast<std::size_t>(block.count);
+  if (t > 0 && own > 0) out.copy_entries(staged_[t], own, first);
+  out.block[t] = {first, first + own};
+  if (nt > 1) set_touch(out, t, first, first + own, nt);
 }
 
 Range ContactSearch::balanced_part(std::size_t t, std::size_t nt) const {
@@ -250,8 +274,8 @@ Range ContactSearch::balanced_part(std::size_t t, std::size_t nt) const {
   return {std::min(pairs, start(t) * kChunkPairs), std::min(pairs, start(t + 1) * kChunkPairs)};
 }
 
-void ContactSearch::set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const {
-  const auto t = static_cast<std::size_t>(thread_index());
+void ContactSearch::set_touch(ContactList& out, std::size_t t, std::size_t first, std::size_t last,
+                              std::size_t nt) const {
   const std::size_t n = bodies_->n;
   Range* touch = out.touch.data() + t * nt;
   for (std::size_t u = 0; u < nt; ++u) touch[u] = {last, first};
@@ -267,24 +291,5 @@ void ContactSearch::set_touch(ContactList& out, std::size_t first, std::size_t l
     if (touch[u].first >= touch[u].last) touch[u] = {0, 0};
 }
 
-void ContactSearch::find_end(ContactList& out) {
-  std::int64_t total = 0, candidates = 0, enclosed = 0, multi_crossing = 0;
-  for (std::size_t b = 0; b < teams_; ++b) {
-    total += blocks_[b].count;
-    candidates += candidates_[b];
-    enclosed += blocks_[b].enclosed;
-    multi_crossing += blocks_[b].multi_crossing;
-  }
-  out.count_ = static_cast<std::size_t>(total);
-  // The counts just taken are the next split's; the other array takes the next ones (sized to the list).
-  const std::size_t chunks = (list_.size() + kChunkPairs - 1) / kChunkPairs;
-  if (chunk_contacts_[parity_].size() != chunks) chunk_contacts_[parity_].assign(chunks, 0);
-  parity_ ^= 1;
-  if (chunk_contacts_[parity_].size() != chunks) chunk_contacts_[parity_].assign(chunks, 0);
-  out.blocks = teams_;
-  out.candidate_pairs = candidates;
-  out.enclosed = enclosed;
-  out.multi_crossing = multi_crossing;
-}
 
 }  // namespace frac::dem

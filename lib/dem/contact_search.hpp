@@ -3,10 +3,10 @@
 // (dem/neighbour_list) culled by bounding circles and separating edges before any clipping, and the overlap
 // geometry of each candidate pair (geometry/overlap), into a ContactList (dem/contact_list) whose forces the
 // contact laws (dem/contact_laws) then give.
-// On a team of threads (core/parallel.hpp), with the model's other loops: each thread tests its part of the
-// pairs in order, the first thread putting its contacts straight into the list, the others into lists of their
-// own, copied in behind it in pair order, so the list does not depend on the thread count. Its room grows with
-// the contacts, not with the pairs (far fewer: memory).
+// As phases of the model's step (core/phases): each thread tests its part of the pairs in order, the first
+// thread putting its contacts straight into the list, the others into lists of their own, copied in behind it in
+// pair order, so the list does not depend on the thread count. Its room grows with the contacts, not with the
+// pairs (far fewer: memory).
 // The overlap of a pair gets a hint (geometry::OverlapHint): the cached facing edges and their reaches,
 // precomputed per cell edge, which leave out clip lines that cannot cut.
 #include <array>
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "dem/bodies.hpp"
 #include "dem/contact_list.hpp"
 #include "dem/neighbour_list.hpp"
@@ -29,25 +30,30 @@ class ContactSearch {
  public:
   ContactSearch() = default;
   ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies);
-  // Finds every overlapping pair at state q and fills `out` (cleared first), on threads of its own: call it
-  // outside a parallel region.
+  // Finds every overlapping pair at state q and fills `out` (cleared first): its phases on a team of their own.
   void find(std::span<const double> q, ContactList& out);
-  // The same in parts, for a caller that runs other work on the same team in between (the model: the
-  // beams). Before the team: reserve_threads. Team functions: find_start (the world vertices of this thread's
-  // cells, from their positions alone; no barrier at its end); after a barrier, find_finish (the neighbour
-  // list, the pair tests, the list filled: thread t its block, out.block[t]; no barrier at its end). After a
-  // barrier, by one thread: find_end (the list's size, `blocks` and diagnostics).
-  void reserve_threads(std::size_t threads, ContactList& out);
-  void find_start(std::span<const double> q);
-  void find_finish(std::span<const double> q, ContactList& out);
-  void find_end(ContactList& out);
+  // The same as phases of a caller's step, which may run other phases between the two lists (the model: the
+  // beams): bind(q, out) before each run (outside the team); start_phases, the world vertices and the moves of
+  // the cells from their positions alone; finish_phases, the neighbour list when it is due, the pair tests and
+  // the list filled (thread t of the team its block, out.block[t]), its size and diagnostics. The phases call
+  // this object: take them once it is in place.
+  void bind(std::span<const double> q, ContactList& out);
+  Phases start_phases();
+  Phases finish_phases();
   // How often the neighbour list was rebuilt.
   std::int64_t rebuilds() const { return list_.rebuilds(); }
   // The neighbour list's state (core/state_archive); loading checks every edge and vertex index against the mesh.
   void visit_state(StateArchive& archive);
 
  private:
-  void world_vertices(std::span<const double> q);  // this thread's cells
+  void reserve_threads(std::size_t threads, ContactList& out);
+  // The phases' bodies: t of a team of nt.
+  void vertices(std::size_t t, std::size_t nt);     // world vertices and moves of thread t's cells
+  void test_pairs(std::size_t t, std::size_t nt);   // thread t's part of the pairs into its list
+  void count(std::size_t nt);                       // the blocks' offsets, the list's room, size and diagnostics
+  void fill(std::size_t t, std::size_t nt);         // thread t's contacts copied to its block of the list
+  std::span<const double> q_;                       // bound state and list
+  ContactList* out_ = nullptr;
   WorldPolygons world_polygons() const { return {world_.data(), mesh_->vertex_offset.data()}; }
   std::span<const Vec2> world_polygon(std::size_t k) const { return world_polygons()(k); }
   const mesh::CellMesh* mesh_ = nullptr;
@@ -67,14 +73,11 @@ class ContactSearch {
   bool test_pair(std::size_t p, const double* x, const double* y, double slack, Fill& fill);
   [[gnu::noinline]] void test_pair_further(std::size_t p, const double* x, const double* y, double slack, Fill& fill);
   TeamSlots<std::int64_t> candidates_;  // per thread: candidate pairs it tested
-  std::size_t teams_ = 1;               // threads of the team of the last find
   struct Block {  // one thread's block of the list: the contacts of its part of the pairs
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
     std::int64_t offset = 0;                                   // its first entry in the list
   };
   std::vector<Block> blocks_;            // per thread
-  TeamSlots<std::size_t> own_contacts_;  // per thread: the contacts of its part of the pairs
-  TeamSlots<std::size_t> room_;          // the list's room after the first thread's fill (its slot only)
   std::vector<ContactList> staged_;      // per thread but the first: the contacts of its part of the pairs
   // Thread t's part of the pairs, of a team of nt: whole chunks of kChunkPairs, split by the last evaluation's
   // contacts (each costs the pair tests of about kContactWeight pairs without one).
@@ -83,8 +86,8 @@ class ContactSearch {
   Range balanced_part(std::size_t t, std::size_t nt) const;
   std::array<std::vector<std::uint32_t>, 2> chunk_contacts_;  // contacts per chunk: the last evaluation's, and this one's
   int parity_ = 0;                                            // chunk_contacts_[parity_]: this evaluation's
-  // out.touch for this thread's block, [first, last), of a team of nt.
-  void set_touch(ContactList& out, std::size_t first, std::size_t last, std::size_t nt) const;
+  // out.touch for thread t's block, [first, last), of a team of nt.
+  void set_touch(ContactList& out, std::size_t t, std::size_t first, std::size_t last, std::size_t nt) const;
 };
 
 }  // namespace frac::dem

@@ -42,6 +42,7 @@ Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics
     inv_mass_[k] = inv_mass_[bodies_.n + k] = 1.0 / bodies_.mass[k];
     inv_mass_[2 * bodies_.n + k] = 1.0 / bodies_.inertia[k];
   }
+  make_phases();
 }
 
 void Model::visit_state(StateArchive& archive) {
@@ -52,88 +53,95 @@ void Model::visit_state(StateArchive& archive) {
 }
 
 void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
-  const std::size_t n = size();
-  double* force = force_.data();
+  bind(t, q, v, a);
+  phases_.run(team_size());
+}
+
+void Model::bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
+  System::bind(t, q, v, a);
   ++evaluations_;
-  // The beams, when on, come first and write the forces (no pass to zero them first: a loop fewer).
-  const bool beams_on = physics_.beams;
-  const bool contact_list = physics_.contacts;
-  const auto most = static_cast<std::size_t>(max_threads());
-  if (contact_list) search_.reserve_threads(most, contacts_);
-  zero_.reserve(most);
-  const double* inv_mass = inv_mass_.data();
-  double* acc = a.data();
-  // One parallel region, barriers only where a thread reads what another wrote. Each thread takes the same cells
-  // in every per-cell loop (static_range), so it finds the values where it left them, and the contacts it
-  // filled, for the contact laws.
-  as_team(bodies_.n > kMinParallelItems, [&] {
-    const auto nt = static_cast<std::size_t>(thread_count());
-    if (!beams_on) {
-      this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
+  if (physics_.contacts) search_.bind(q, contacts_);
+  zero_.reserve(static_cast<std::size_t>(max_threads()));
+}
+
+// One parallel loop a phase, each thread taking the same cells in every per-cell loop (static_range), so that it
+// finds the values where it left them, and the contacts it filled, for the contact laws. The beams, when on, come
+// first onto the forces and write them (no pass to zero them first: a loop fewer).
+void Model::make_phases() {
+  const bool beams = physics_.beams, contacts = physics_.contacts;
+  if (!beams)
+    phases_.add({"forces: zero", false,
+                 [this](std::size_t t, std::size_t nt) {
+                   double* force = force_.data();
+                   coordinate_ranges(size(), coordinate_blocks(), t, nt, [&](std::size_t first, std::size_t last) {
 #pragma omp simd
-        for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
-      });
-    }
-    if (contact_list) search_.find_start(q);  // (this thread's cells: their positions alone)
-    team_barrier();
-    // (Every thread's part of the search started: the beams and the pairs read the other threads' cells.)
-    if (beams_on) beams_.beam_pass(q);
-    if (contact_list) {
-      search_.find_finish(q, contacts_);  // (its barriers come after every beam's force)
-    } else {
-      team_barrier();
-    }
-    if (beams_on) beams_.gather(force_, false);  // (delivers its power through the beam energy, not as work)
-    if (contact_list) {
-      // The block this thread filled (not contacts_.mine(): the list's `blocks` is set after the barrier).
-      const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
-      contact_kinematics(contacts_, bodies_, q, v, mine);
-      apply_contact_laws(laws_, contacts_, mine);
-      // The first thread adds its own block's forces onto its cells before the barrier: they come first onto
-      // them, and no other thread writes them. (It is the one that waits here: it reads the first rows of the
-      // next thread's cells, whose loops then wait for its copies of their lines to be invalidated.)
-      if (thread_index() == 0) add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{0, 1});
-    }
-    team_barrier();
-    // The list's size and diagnostics by one thread (read after the team); each thread the power sums of the
-    // blocks of contacts that start in its part of the list (added up after the team) and the contacts'
-    // forces, summed over the terms, onto its own cells in contact order; no barrier after.
-    if (thread_index() == 0) {
-      teams_ = nt;
-      if (contact_list) search_.find_end(contacts_);
-    }
-    if (contact_list) {
-      const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
-      const Range mine{contacts_.block[static_cast<std::size_t>(thread_index())]};
-      for (std::size_t l = 0; l < laws_.size(); ++l) law_block_powers(contacts_, l, count, mine);
-      const std::size_t first_block = thread_index() == 0 ? 1 : 0;  // (the first thread's own: added above)
-      add_contact_forces_of_team(contacts_, bodies_.n, q, force_, Range{first_block, nt});
-    }
-    // The accelerations, and in the same pass whether every force is finite.
-    std::uint64_t bad = 0;
-    this_thread_coordinate_ranges(n, coordinate_blocks(), [&](std::size_t first, std::size_t last) {
-      double* __restrict out = acc;
-      const double* __restrict f = force;
-      const double* __restrict w = inv_mass;
+                     for (std::size_t k = first; k < last; ++k) force[k] = 0.0;
+                   });
+                 },
+                 {}});
+  if (contacts) phases_.add(search_.start_phases());
+  if (beams)
+    phases_.add({"beams: forces", false,
+                 [this](std::size_t t, std::size_t nt) { beams_.beam_pass(bound_q_, t, nt); }, {}});
+  if (contacts) phases_.add(search_.finish_phases());
+  if (beams)
+    phases_.add({"beams: gather", false,
+                 [this](std::size_t t, std::size_t nt) { beams_.gather(force_, false, t, nt); }, {}});
+  if (contacts) {
+    phases_.add({"contact laws", false, [this](std::size_t t, std::size_t) { contact_laws_part(t); }, {}});
+    phases_.add({"contact forces", false,
+                 [this](std::size_t t, std::size_t nt) { contact_forces_part(t, nt); }, {}});
+  }
+  phases_.add({"accelerations", false, [this](std::size_t t, std::size_t nt) { accelerations_part(t, nt); }, {}});
+  phases_.add({"forces: sums", true, [this](std::size_t, std::size_t nt) { sums(nt); }, {}});
+}
+
+void Model::contact_laws_part(std::size_t t) {
+  // The block this thread filled.
+  const Range mine = contacts_.block[t];
+  contact_kinematics(contacts_, bodies_, bound_q_, bound_v_, mine);
+  apply_contact_laws(laws_, contacts_, mine);
+}
+
+void Model::contact_forces_part(std::size_t t, std::size_t nt) {
+  // The power sums of the blocks of contacts that start in this thread's part of the list (added up after the
+  // team), and the contacts' forces, summed over the laws, onto its own cells in contact order.
+  const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
+  for (std::size_t l = 0; l < laws_.size(); ++l) law_block_powers(contacts_, l, count, contacts_.block[t]);
+  add_contact_forces_of_team(contacts_, bodies_.n, bound_q_, force_, t, nt);
+}
+
+void Model::accelerations_part(std::size_t t, std::size_t nt) {
+  // The accelerations, and in the same pass whether every force is finite.
+  const double* force = force_.data();
+  const double* inv_mass = inv_mass_.data();
+  double* acc = bound_a_.data();
+  std::uint64_t bad = 0;
+  coordinate_ranges(size(), coordinate_blocks(), t, nt, [&](std::size_t first, std::size_t last) {
+    double* __restrict out = acc;
+    const double* __restrict f = force;
+    const double* __restrict w = inv_mass;
 #pragma omp simd reduction(| : bad)
-      for (std::size_t k = first; k < last; ++k) {
-        const double fk = f[k];
-        out[k] = fk * w[k];
-        bad |= non_finite_bit(fk);
-      }
-    });
-    zero_.mine() = non_finite_seen(bad) ? 1.0 : 0.0;
+    for (std::size_t k = first; k < last; ++k) {
+      const double fk = f[k];
+      out[k] = fk * w[k];
+      bad |= non_finite_bit(fk);
+    }
   });
+  zero_[t] = non_finite_seen(bad) ? 1.0 : 0.0;
+}
+
+void Model::sums(std::size_t nt) {
   for (std::size_t l = 0; l < laws_.size(); ++l) law_power_[l] = law_power_of_blocks(contacts_, l);
   double zero = 0;
-  for (std::size_t s = 0; s < teams_; ++s) zero += zero_[s];
+  for (std::size_t s = 0; s < nt; ++s) zero += zero_[s];
   // A non-finite force is traced to the first term that made it (the run stops at this step).
-  if (zero != 0.0 && non_finite_term_.empty()) blame_non_finite(q, v);
+  if (zero != 0.0 && non_finite_term_.empty()) blame_non_finite(bound_q_, bound_v_);
   boundary_power_ = 0;
   for (const Prescribed& p : prescribed_) {
     const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];
     const double m_k = 1.0 / inv_mass_[p.index];
-    boundary_power_ += (m_k * m.acceleration(t) - force_[p.index]) * m.velocity(t);
+    boundary_power_ += (m_k * m.acceleration(bound_t_) - force_[p.index]) * m.velocity(bound_t_);
   }
 }
 

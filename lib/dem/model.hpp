@@ -1,6 +1,6 @@
 #pragma once
-// The polygon DEM as a dynamics::System: the force terms a scene names, composed into a list at
-// construction (a term that is off is not in the list: it is never called and costs nothing), the
+// The polygon DEM as a dynamics::System: the force terms a scene names, composed into a list of phases at
+// construction (core/phases; a term that is off is not in the list: it is never called and costs nothing), the
 // prescribed boundary coordinates of the loading, and the energy ledger (the power of every
 // non-conservative term, integrated over time).
 #include <array>
@@ -43,9 +43,14 @@ class Model final : public dynamics::System {
   // The contact laws the physics names, from `laws` (the paper's by default; tests add their own).
   Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics,
         const ContactLawTable& laws = contact_law_table());
+  Model(const Model&) = delete;  // (its phases call it where it is)
+  Model& operator=(const Model&) = delete;
 
-  // dynamics::System
+  // dynamics::System: the evaluation is its phases, on a team of its own (accelerations) or in a step's.
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  void bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  Phases force_phases() override { return phases_; }
+  std::size_t team_size() const override { return frac::team_size(bodies_.n > kMinParallelItems); }
   std::size_t coordinate_blocks() const override { return 3; }  // x, y, φ of every cell
   std::span<const std::size_t> prescribed() const override { return prescribed_index_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
@@ -90,6 +95,13 @@ class Model final : public dynamics::System {
   // After an evaluation whose forces are not all finite: the first term, and the coordinate, where they
   // became non-finite (non_finite_term_, non_finite_index_).
   void blame_non_finite(std::span<const double> q, std::span<const double> v);
+  // The evaluation's phases, and the bodies of its own: thread t of a team of nt.
+  Phases phases_;
+  void make_phases();
+  void contact_laws_part(std::size_t t);
+  void contact_forces_part(std::size_t t, std::size_t nt);
+  void accelerations_part(std::size_t t, std::size_t nt);
+  void sums(std::size_t nt);  // the laws' powers, the non-finite check, the boundary's power
   Bodies bodies_;
   Material material_;
   Physics physics_;
@@ -110,7 +122,6 @@ class Model final : public dynamics::System {
   std::vector<std::size_t> prescribed_index_;
   std::vector<double> inv_mass_;  // per coordinate: 1/m, 1/m, 1/I
   TeamSlots<double> zero_;        // per thread of the evaluation's team: Σ F·0 over its coordinates
-  std::size_t teams_ = 1;         // threads of that team
 };
 
 }  // namespace frac::dem

@@ -25,28 +25,28 @@ void NeighbourList::reserve_threads(std::size_t threads) {
 // counts as infinitely far). A polygon never leaves its bounding circle about its centroid, whatever it turns,
 // so a pair left out of the list (circles more than the skin apart) cannot overlap while the two largest
 // distances over all cells sum to at most the skin.
-void NeighbourList::measure_moves(std::span<const double> q) {
+void NeighbourList::measure_moves(std::span<const double> q, std::size_t t, std::size_t nt) {
   const std::size_t n = bodies_->n;
   if (ref_.size() != q.size()) {
-    moved_.mine() = {kInfinity, kInfinity};
+    moved_[t] = {kInfinity, kInfinity};
     return;
   }
   const double* x = q.data();
   const double* y = x + n;
   const double* ref = ref_.data();
   Moved moved;
-  const Range mine = this_thread_range(n);
+  const Range mine = static_range(n, t, nt);
   for (std::size_t k = mine.first; k < mine.last; ++k) {
     const double dx = x[k] - ref[k], dy = y[k] - ref[n + k];
     const double d2 = dx * dx + dy * dy;
     if (!(d2 <= moved.second * moved.second)) moved.add(std::isnan(d2) ? kInfinity : std::sqrt(d2));  // (rarely)
   }
-  moved_.mine() = moved;
+  moved_[t] = moved;
 }
 
-bool NeighbourList::stale() const {
+bool NeighbourList::stale(std::size_t nt) const {
   Moved moved;
-  for (std::size_t t = 0; t < static_cast<std::size_t>(thread_count()); ++t) {
+  for (std::size_t t = 0; t < nt; ++t) {
     moved.add(moved_[t].largest);
     moved.add(moved_[t].second);
   }
@@ -58,6 +58,7 @@ void NeighbourList::build_grid(std::span<const double> q) {
   const double* x = q.data();
   const double* y = x + n;
   ++rebuilds_;
+  rebuilding_ = true;
   ref_.assign(q.begin(), q.end());
   // The old list, indexed by its first cell, so that a pair found again keeps what it has learnt (its
   // separating edges, whether it overlapped, the lines of its overlap): less work. (The kept facing edge
@@ -114,15 +115,12 @@ void NeighbourList::build_grid(std::span<const double> q) {
   }
 }
 
-void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
+void NeighbourList::find_pairs(std::span<const double> q, WorldPolygons world, std::size_t t, std::size_t nt) {
   const std::size_t n = bodies_->n;
   const double* x = q.data();
   const double* y = x + n;
-  if (thread_index() == 0) build_grid(q);  // (one thread; the others wait at the barrier after)
-  team_barrier();
   // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (in thread
   // order) into their own buffers, joined in thread order: the same list whatever the thread count.
-  const auto t = static_cast<std::size_t>(thread_index()), nt = static_cast<std::size_t>(thread_count());
   auto& buf = t == 0 ? pairs_ : thread_pairs_[t];  // (build_grid cleared pairs_)
   if (t > 0) buf.clear();
   const std::size_t gx = grid_x_, gy = grid_y_;
@@ -178,15 +176,14 @@ void NeighbourList::rebuild(std::span<const double> q, WorldPolygons world) {
     }
     for (std::size_t i = first; i < last; ++i) keep_pairs_of(i);
   }
-  team_barrier();
-  if (t == 0) {  // (one thread; the others wait at the barrier after)
-    std::vector<NeighbourPair>().swap(previous_);  // (read by no thread now: freed before the list may grow)
-    for (std::size_t b = 1; b < nt; ++b) {
-      pairs_.insert(pairs_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
-      std::vector<NeighbourPair>().swap(thread_pairs_[b]);
-    }
+}
+
+void NeighbourList::join(std::size_t nt) {
+  std::vector<NeighbourPair>().swap(previous_);  // (read by no thread now: freed before the list may grow)
+  for (std::size_t b = 1; b < nt; ++b) {
+    pairs_.insert(pairs_.end(), thread_pairs_[b].begin(), thread_pairs_[b].end());
+    std::vector<NeighbourPair>().swap(thread_pairs_[b]);
   }
-  team_barrier();
 }
 
 void NeighbourList::visit_state(StateArchive& archive) {

@@ -3,8 +3,9 @@
 // come within a skin of each other, from a cell list (grid cells of the largest bounding diameter plus the
 // skin), rebuilt when two cells may together have moved by more than the skin since the last build, so that no
 // pair can start to overlap unseen. A pair found again at a rebuild keeps what the pair tests learnt about it.
-// Threads share the rebuild: contiguous ranges of cells into per-thread buffers, joined in thread order, so the
-// list does not depend on the thread count.
+// A rebuild is three phases of a step (core/phases): the grid (serial), the pairs (threads take contiguous ranges
+// of cells into buffers of their own) and the join of the buffers in thread order (serial), so the list does not
+// depend on the thread count.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -43,13 +44,19 @@ class NeighbourList {
   explicit NeighbourList(const Bodies& bodies);
   // Before a team of `threads` uses the list (allocates when the count grows).
   void reserve_threads(std::size_t threads);
-  // A team function: how far this thread's cells (this_thread_range) have moved since the build, at state q
-  // (x of every cell, then y, then φ). No barrier at its end.
-  void measure_moves(std::span<const double> q);
-  // After a barrier behind measure_moves, on any thread of the team: whether the list must be rebuilt.
-  bool stale() const;
-  // A team function, barriers at its ends: the list at state q; a new pair's facing edges from `world`.
-  void rebuild(std::span<const double> q, WorldPolygons world);
+  // Thread t's part of a parallel phase (of nt): how far its cells (static_range) have moved since the build, at
+  // state q (x of every cell, then y, then φ).
+  void measure_moves(std::span<const double> q, std::size_t t, std::size_t nt);
+  // In a phase after measure_moves's (on any thread of its team of nt): whether the list must be rebuilt.
+  bool stale(std::size_t nt) const;
+  // A rebuild at state q, in three phases: build_grid (serial; then rebuilding() holds until end_rebuild, in a
+  // phase after the join: the phases' `when` reads it), find_pairs (parallel: thread t's part of the cells, a new
+  // pair's facing edges from `world`) and join (serial).
+  void build_grid(std::span<const double> q);
+  bool rebuilding() const { return rebuilding_; }
+  void end_rebuild() { rebuilding_ = false; }
+  void find_pairs(std::span<const double> q, WorldPolygons world, std::size_t t, std::size_t nt);
+  void join(std::size_t nt);
   std::span<NeighbourPair> pairs() { return pairs_; }
   std::size_t size() const { return pairs_.size(); }
   // How often the list was built.
@@ -60,8 +67,8 @@ class NeighbourList {
   void visit_state(StateArchive& archive);
 
  private:
-  void build_grid(std::span<const double> q);  // the first thread's part of a rebuild
   const Bodies* bodies_ = nullptr;
+  bool rebuilding_ = false;
   double skin_ = 0;                       // m
   std::vector<double> ref_;               // q at the last build
   std::vector<NeighbourPair> pairs_;      // in order of i, then of the grid scan

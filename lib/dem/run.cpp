@@ -174,8 +174,15 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
   const double first_t = integrator.t();
   std::optional<DeferSignals> defer;
   if (continuation.checkpoints) defer.emplace();
+  // A step: the integrator's phases around the model's, then the breaking pass (on the state the step ends in).
+  Beams& beams = model.beams();
+  Phases step_phases = integrator.step_phases(model, breaking ? beams.breaking_phases() : Phases{});
+  const std::size_t team = integrator.team_for(model);
   for (;;) {
-    integrator.step(model);
+    const std::size_t before = broken.size();
+    if (breaking) beams.bind_breaking(integrator.q(), model.material().t_eps, model.material().t_theta, broken);
+    integrator.begin_step(model);
+    step_phases.run(team);
     ++step;
     // Ledger: the power of each term integrated by the trapezoidal rule between force evaluations.
     for (std::size_t l = 0; l < laws.size(); ++l) {
@@ -187,8 +194,6 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     if (!model.non_finite_term().empty() || !integrator.finite())
       throw RuntimeError(blame_non_finite(model, integrator, step));
     if (breaking) {
-      const std::size_t before = broken.size();
-      model.beams().break_beams(integrator.q(), model.material().t_eps, model.material().t_theta, broken);
       for (std::size_t k = before; k < broken.size(); ++k) {
         ledger.broken_energy += broken[k].energy;
         if (writer)
@@ -234,6 +239,7 @@ RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScen
     }
   }
   if (writer) writer->finish();
+  summary.phases = step_phases.times();
   summary.steps = step;
   summary.time = integrator.t();
   summary.broken = static_cast<std::int64_t>(broken.size());

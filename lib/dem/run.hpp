@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/phases.hpp"
 #include "core/progress.hpp"
 #include "dem/loading.hpp"
 #include "dem/model.hpp"
@@ -27,6 +28,7 @@ struct RunSummary {
   int start_evaluations = 0;  // force evaluations of an exact gear5 start (0 for the usual start)
   int checkpoints = 0;          // written by this process
   double checkpoint_seconds = 0;  // wall time spent writing them
+  std::vector<PhaseTime> phases;  // the time of each phase of the steps (core/phases)
 };
 
 struct Ledger {

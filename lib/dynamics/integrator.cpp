@@ -202,12 +202,48 @@ void Integrator::visit_clock(StateArchive& archive) {
   archive.value("steps", steps_);
 }
 
+void System::bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
+  bound_t_ = t;
+  bound_q_ = q;
+  bound_v_ = v;
+  bound_a_ = a;
+}
+
+Phases System::force_phases() {
+  Phases p;
+  p.add({"accelerations", true,
+         [this](std::size_t, std::size_t) { accelerations(bound_t_, bound_q_, bound_v_, bound_a_); }, {}});
+  return p;
+}
+
+void Integrator::step(System& system) {
+  if (step_system_ != &system) {
+    step_ = step_phases(system);
+    step_system_ = &system;
+  }
+  begin_step(system);
+  step_.run(team_for(system));
+}
+
+Phase Integrator::clock_phase(const TeamSlots<int>& bad) {
+  return {"step: clock", true,
+          [this, &bad](std::size_t, std::size_t nt) {
+            int any = 0;
+            for (std::size_t t = 0; t < nt; ++t) any |= bad[t];
+            finite_ = any == 0;
+            t_ += dt_;
+            ++steps_;
+          },
+          {}};
+}
+
 // ---------------------------------------------------------------- Gear5
 namespace {
 constexpr double kGearC[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
 }
 
 void Gear5::start(System& system, double t0, double dt, std::span<const double> q0, std::span<const double> v0) {
+  step_system_ = nullptr;
   n_ = q0.size();
   t_ = t0;
   dt_ = dt;
@@ -311,39 +347,44 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
   return non_finite_seen(bad) ? 1 : 0;
 }
 
-void Gear5::step(System& system) {
-  const auto most = static_cast<std::size_t>(max_threads());
-  bad_.reserve(most);
-  double* r0 = r_[0].data();
-  double *r1 = r_[1].data(), *r2 = r_[2].data(), *r3 = r_[3].data(), *r4 = r_[4].data(), *r5 = r_[5].data();
-  double* v = v_.data();
-  const double* a = a_.data();
-  const double inv_dt = 1.0 / dt_, half_dt2 = 0.5 * dt_ * dt_;
+void Gear5::begin_step(System& system) {
+  bad_.reserve(static_cast<std::size_t>(max_threads()));
+  system.bind(t_ + dt_, r_[0], v_, a_);
+}
+
+Phases Gear5::step_phases(System& system, const Phases& after) {
   // Each loop on the threads' parts of the coordinates (PartLayout: r_[1..5] shifted), split as the system splits
   // its cells.
-  const bool team = layout_.threads() > 1;
-  std::size_t threads = 1;
-  as_team(team, [&] {
-    layout_.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-      gear5_predict(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, inv_dt);
-    });
-  });
-  apply_prescribed(system, t_ + dt_);
-  system.accelerations(t_ + dt_, r_[0], v_, a_);
-  as_team(team, [&] {
-    int bad = 0;
-    layout_.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
-      bad |= gear5_correct(first, last, r0, r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v, a, half_dt2, inv_dt);
-    });
-    bad_.mine() = bad;
-    if (thread_index() == 0) threads = static_cast<std::size_t>(thread_count());
-  });
-  apply_prescribed(system, t_ + dt_);
-  t_ += dt_;
-  int bad = 0;
-  for (std::size_t t = 0; t < threads; ++t) bad |= bad_[t];
-  finite_ = bad == 0;
-  ++steps_;
+  Phases p;
+  p.add({"predict", false,
+         [this](std::size_t, std::size_t) {
+           double *r1 = r_[1].data(), *r2 = r_[2].data(), *r3 = r_[3].data(), *r4 = r_[4].data();
+           const double* r5 = r_[5].data();
+           layout_.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+             gear5_predict(first, last, r_[0].data(), r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v_.data(), 1.0 / dt_);
+           });
+         },
+         {}});
+  const auto prescribed = [&system] { return !system.prescribed().empty(); };
+  p.add({"prescribe", true, [this, &system](std::size_t, std::size_t) { apply_prescribed(system, t_ + dt_); },
+         prescribed});
+  p.add(system.force_phases());
+  p.add({"correct", false,
+         [this](std::size_t t, std::size_t) {
+           double *r1 = r_[1].data(), *r2 = r_[2].data(), *r3 = r_[3].data(), *r4 = r_[4].data(), *r5 = r_[5].data();
+           int bad = 0;
+           layout_.this_thread_parts([&](std::size_t first, std::size_t last, std::size_t s) {
+             bad |= gear5_correct(first, last, r_[0].data(), r1 + s, r2 + s, r3 + s, r4 + s, r5 + s, v_.data(),
+                                  a_.data(), 0.5 * dt_ * dt_, 1.0 / dt_);
+           });
+           bad_[t] = bad;
+         },
+         {}});
+  p.add({"prescribe", true, [this, &system](std::size_t, std::size_t) { apply_prescribed(system, t_ + dt_); },
+         prescribed});
+  p.add(clock_phase(bad_));
+  p.add(after);
+  return p;
 }
 
 // ---------------------------------------------------------------- velocity Verlet
@@ -357,6 +398,7 @@ void VelocityVerlet::visit_state(StateArchive& archive) {
 
 void VelocityVerlet::start(System& system, double t0, double dt, std::span<const double> q0,
                            std::span<const double> v0) {
+  step_system_ = nullptr;
   n_ = q0.size();
   t_ = t0;
   dt_ = dt;
@@ -370,37 +412,53 @@ void VelocityVerlet::start(System& system, double t0, double dt, std::span<const
   system.prescribe(t_, q_, v_, a_);
 }
 
-void VelocityVerlet::step(System& system) {
-  const double h = 0.5 * dt_;
-  double* q = q_.data();
-  double* v = v_.data();
-  double* v_est = v_est_.data();
-  const double* a = a_.data();
-  const double dt = dt_;
+void VelocityVerlet::begin_step(System& system) {
+  bad_.reserve(static_cast<std::size_t>(max_threads()));
+  system.bind(t_ + dt_, q_, v_est_, a_);
+}
+
+Phases VelocityVerlet::step_phases(System& system, const Phases& after) {
   const std::size_t blocks = system.coordinate_blocks();
-  for_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
+  Phases p;
+  p.add({"kick and drift", false,
+         [this, blocks](std::size_t t, std::size_t nt) {
+           const double h = 0.5 * dt_, dt = dt_;
+           double *q = q_.data(), *v = v_.data(), *v_est = v_est_.data();
+           const double* a = a_.data();
+           coordinate_ranges(n_, blocks, t, nt, [&](std::size_t first, std::size_t last) {
 #pragma omp simd
-    for (std::size_t i = first; i < last; ++i) {
-      v[i] += h * a[i];            // half kick
-      q[i] += dt * v[i];           // drift
-      v_est[i] = v[i] + h * a[i];  // velocity estimate at the new time for velocity-dependent forces
-    }
-  });
-  t_ += dt_;
-  system.prescribe(t_, q_, v_est_, a_);
-  system.accelerations(t_, q_, v_est_, a_);
-  finite_ = sum_over_coordinate_ranges(n_, blocks, [&](std::size_t first, std::size_t last) {
-              std::uint64_t bad = 0;
+             for (std::size_t i = first; i < last; ++i) {
+               v[i] += h * a[i];            // half kick
+               q[i] += dt * v[i];           // drift
+               v_est[i] = v[i] + h * a[i];  // velocity estimate at the new time for velocity-dependent forces
+             }
+           });
+         },
+         {}});
+  p.add({"prescribe", true, [this, &system](std::size_t, std::size_t) { system.prescribe(t_ + dt_, q_, v_est_, a_); },
+         {}});
+  p.add(system.force_phases());
+  p.add({"kick", false,
+         [this, blocks](std::size_t t, std::size_t nt) {
+           const double h = 0.5 * dt_;
+           const double *q = q_.data(), *a = a_.data();
+           double* v = v_.data();
+           std::uint64_t bad = 0;
+           coordinate_ranges(n_, blocks, t, nt, [&](std::size_t first, std::size_t last) {
 #pragma omp simd reduction(| : bad)
-              for (std::size_t i = first; i < last; ++i) {
-                v[i] += h * a[i];  // half kick
-                bad |= non_finite_bit(q[i]) | non_finite_bit(v[i]);
-              }
-              return non_finite_seen(bad) ? 1.0 : 0.0;
-            }) == 0.0;
-  const auto fixed = system.prescribed();
-  if (!fixed.empty()) system.prescribe(t_, q_, v_, a_);
-  ++steps_;
+             for (std::size_t i = first; i < last; ++i) {
+               v[i] += h * a[i];  // half kick
+               bad |= non_finite_bit(q[i]) | non_finite_bit(v[i]);
+             }
+           });
+           bad_[t] = non_finite_seen(bad) ? 1 : 0;
+         },
+         {}});
+  p.add({"prescribe", true, [this, &system](std::size_t, std::size_t) { system.prescribe(t_ + dt_, q_, v_, a_); },
+         [&system] { return !system.prescribed().empty(); }});
+  p.add(clock_phase(bad_));
+  p.add(after);
+  return p;
 }
 
 }  // namespace frac::dynamics

@@ -9,6 +9,7 @@
 //   verlet : velocity Verlet; velocity-dependent forces see the velocity v + dt·a_old.
 // Coordinates a model prescribes (moving boundary layers) are overwritten every step through
 // System::prescribe and never integrated.
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "core/scene.hpp"
 #include "core/state_archive.hpp"
 
@@ -36,6 +38,21 @@ class System {
   virtual std::size_t coordinate_blocks() const { return 1; }
   virtual void prescribe(double /*t*/, std::span<double> /*q*/, std::span<double> /*v*/,
                          std::span<double> /*a*/) const {}
+
+  // The evaluation as phases (core/phases) of a step that runs the integrator's phases and these on one team:
+  // bind(t, q, v, a) before each run (outside the team), then the phases write a at (t, q, v). The default: one
+  // serial phase that calls accelerations at the bound state. The phases call this object: take them once it is
+  // in place.
+  virtual void bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a);
+  virtual Phases force_phases();
+  // The team its evaluation runs on (core/phases: team_size); a step's team is the larger of it and the
+  // integrator's (from kMinParallelCoordinates coordinates).
+  virtual std::size_t team_size() const { return 1; }
+
+ protected:
+  double bound_t_ = 0;  // the bound state
+  std::span<const double> bound_q_, bound_v_;
+  std::span<double> bound_a_;
 };
 
 enum class IntegratorKind { gear5, verlet };
@@ -74,8 +91,18 @@ class Integrator {
   // Gear5::start_exact, or start() below with StartKind::exact, gives them exactly.
   virtual void start(System& system, double t0, double dt, std::span<const double> q0,
                      std::span<const double> v0) = 0;
-  // Advances by one step of dt.
-  virtual void step(System& system) = 0;
+  // Advances by one step of dt: the phases of step_phases(system) on a team when worth it.
+  void step(System& system);
+  // One step as phases (core/phases): the integrator's (predict, the prescribed coordinates, correct, its clock)
+  // around the system's force phases, then `after` (an engine's own: breaking). An engine that appends phases
+  // runs the list itself, begin_step(system) before each run, on a team when team_for(system).
+  virtual Phases step_phases(System& system, const Phases& after = {}) = 0;
+  virtual void begin_step(System& system) = 0;
+  std::size_t team_for(const System& system) const {
+    return std::max(system.team_size(), frac::team_size(n_ > kMinParallelCoordinates));
+  }
+  // The phase list step() runs (its times: where a step's time goes).
+  const Phases& step_list() const { return step_; }
 
   virtual IntegratorKind kind() const = 0;
   // Current state (after the last step): positions, velocities, accelerations.
@@ -99,6 +126,10 @@ class Integrator {
 
  protected:
   void visit_clock(StateArchive& archive);
+  // The clock phase that ends a step: t += dt, one step more, finite from the threads' `bad` flags.
+  Phase clock_phase(const TeamSlots<int>& bad);
+  Phases step_;
+  const System* step_system_ = nullptr;  // the system step_ was made for (none: made anew)
   bool finite_ = true;
   double t_ = 0, dt_ = 0;
   std::size_t n_ = 0;
@@ -152,7 +183,8 @@ class Gear5 final : public Integrator {
   // Exact start for convergence tests: derivs[k][i] = d^k q_i/dt^k at t0, k = 0..5 (k = 2 is
   // recomputed from the system).
   void start_exact(System& system, double t0, double dt, const std::vector<std::vector<double>>& derivs);
-  void step(System& system) override;
+  Phases step_phases(System& system, const Phases& after = {}) override;
+  void begin_step(System& system) override;
   IntegratorKind kind() const override { return IntegratorKind::gear5; }
   std::span<const double> q() const override { return r_[0]; }
   std::span<const double> v() const override { return v_; }
@@ -175,7 +207,8 @@ class VelocityVerlet final : public Integrator {
  public:
   void start(System& system, double t0, double dt, std::span<const double> q0,
              std::span<const double> v0) override;
-  void step(System& system) override;
+  Phases step_phases(System& system, const Phases& after = {}) override;
+  void begin_step(System& system) override;
   IntegratorKind kind() const override { return IntegratorKind::verlet; }
   std::span<const double> q() const override { return q_; }
   std::span<const double> v() const override { return v_; }
@@ -185,6 +218,7 @@ class VelocityVerlet final : public Integrator {
 
  private:
   std::vector<double> q_, v_, a_, v_est_;
+  TeamSlots<int> bad_;  // per thread: whether a value it wrote in the last kick is not finite
 };
 
 }  // namespace frac::dynamics

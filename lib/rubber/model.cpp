@@ -1,7 +1,5 @@
 #include "rubber/model.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -12,9 +10,8 @@
 namespace frac::rubber {
 namespace {
 // [begin, end) of `n` items for `worker` of `workers`, in contiguous blocks.
-std::pair<std::size_t, std::size_t> worker_range(std::size_t n, int worker, int workers) {
-  const auto w = static_cast<std::size_t>(worker), k = static_cast<std::size_t>(workers);
-  return {n * w / k, n * (w + 1) / k};
+std::pair<std::size_t, std::size_t> worker_range(std::size_t n, std::size_t worker, std::size_t workers) {
+  return {n * worker / workers, n * (worker + 1) / workers};
 }
 }  // namespace
 
@@ -79,81 +76,101 @@ Model::Model(Lattice lattice, ModelOptions options)
     }
   rows_ = ny;
   row_len_ = nx;
+  make_phases();
 }
 
-std::pair<std::size_t, std::size_t> Model::rows_of(int worker, int workers) const {
+std::pair<std::size_t, std::size_t> Model::rows_of(std::size_t worker, std::size_t workers) const {
   return worker_range(rows_, worker, workers);
 }
 
-void Model::job_bonds(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const auto [i0, i1] = worker_range(M.lattice_.n, worker, workers);
-  M.passes_.bonds(M.ctx_, i0, i1, worker);
-}
-void Model::job_centres(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const auto [i0, i1] = worker_range(M.lattice_.n, worker, workers);
-  M.passes_.centres(M.ctx_, i0, i1);
-}
-void Model::job_gather(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const auto [i0, i1] = worker_range(M.lattice_.n, worker, workers);
-  M.passes_.gather(M.ctx_, i0, i1, worker);
+Phase Model::bonds_phase() {
+  return {"lattice: bonds", false,
+          [this](std::size_t t, std::size_t nt) {
+            const auto [i0, i1] = worker_range(lattice_.n, t, nt);
+            passes_.bonds(ctx_, i0, i1, static_cast<int>(t));
+          },
+          {}};
 }
 
-// Fused schedule, each worker owning the rows [r0, r1):
-//   A: the bonds of its last row (the next worker's first row needs them; with periodic y the first
+Phase Model::centres_phase() {
+  return {"lattice: centres", false,
+          [this](std::size_t t, std::size_t nt) {
+            const auto [i0, i1] = worker_range(lattice_.n, t, nt);
+            passes_.centres(ctx_, i0, i1);
+          },
+          {}};
+}
+
+// The fused schedule, each thread owning the rows [r0, r1):
+//   edge bonds: the bonds of its last row (the next thread's first row needs them; with periodic y the first
 //      row needs the last row's);
-//   B: row by row, bonds(r) then centres(r) (which needs bonds of rows r and r − 1), then gather(r − 1)
+//   rows: row by row, bonds(r) then centres(r) (which needs bonds of rows r and r − 1), then gather(r − 1)
 //      (which needs D of rows r − 2 .. r) for the rows strictly inside the range;
-//   C: gather of its first and last rows, whose neighbours' D other workers computed in B.
-void Model::job_fused_a(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const auto [r0, r1] = M.rows_of(worker, workers);
-  if (r1 > r0) M.passes_.bonds(M.ctx_, (r1 - 1) * M.row_len_, r1 * M.row_len_, worker);
-}
-void Model::job_fused_b(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const auto [r0, r1] = M.rows_of(worker, workers);
-  const std::size_t L = M.row_len_;
-  for (std::size_t r = r0; r < r1; ++r) {
-    if (r + 1 != r1) M.passes_.bonds(M.ctx_, r * L, (r + 1) * L, worker);
-    M.passes_.centres(M.ctx_, r * L, (r + 1) * L);
-    if (r >= r0 + 2) M.passes_.gather(M.ctx_, (r - 1) * L, r * L, worker);
-  }
-}
-void Model::job_fused_c(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const auto [r0, r1] = M.rows_of(worker, workers);
-  const std::size_t L = M.row_len_;
-  if (r1 == r0) return;
-  M.passes_.gather(M.ctx_, r0 * L, (r0 + 1) * L, worker);
-  if (r1 - 1 > r0) M.passes_.gather(M.ctx_, (r1 - 1) * L, r1 * L, worker);
-}
-
-void Model::job_energy(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const std::size_t blocks = M.blocks_.size() / 4;
-  const auto [k0, k1] = worker_range(blocks, worker, workers);
-  M.passes_.energy(M.ctx_, k0, k1);
-}
-void Model::job_virial(void* m, int worker, int workers) {
-  Model& M = *static_cast<Model*>(m);
-  const std::size_t blocks = M.blocks_.size() / 4;
-  const auto [k0, k1] = worker_range(blocks, worker, workers);
-  virial_blocks(M.ctx_, k0, k1);
-}
-
-void Model::evaluate() {
+//   edge gathers: gather of its first and last rows, whose neighbours' D other threads computed.
+void Model::make_phases() {
+  const std::size_t L = row_len_;
   if (fused_) {
-    run(&job_fused_a);
-    run(&job_fused_b);
-    run(&job_fused_c);
+    evaluation_.add({"lattice: edge bonds", false,
+                     [this, L](std::size_t t, std::size_t nt) {
+                       const auto [r0, r1] = rows_of(t, nt);
+                       if (r1 > r0) passes_.bonds(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
+                     },
+                     {}});
+    evaluation_.add({"lattice: rows", false,
+                     [this, L](std::size_t t, std::size_t nt) {
+                       const auto [r0, r1] = rows_of(t, nt);
+                       for (std::size_t r = r0; r < r1; ++r) {
+                         if (r + 1 != r1) passes_.bonds(ctx_, r * L, (r + 1) * L, static_cast<int>(t));
+                         passes_.centres(ctx_, r * L, (r + 1) * L);
+                         if (r >= r0 + 2) passes_.gather(ctx_, (r - 1) * L, r * L, static_cast<int>(t));
+                       }
+                     },
+                     {}});
+    evaluation_.add({"lattice: edge gathers", false,
+                     [this, L](std::size_t t, std::size_t nt) {
+                       const auto [r0, r1] = rows_of(t, nt);
+                       if (r1 == r0) return;
+                       passes_.gather(ctx_, r0 * L, (r0 + 1) * L, static_cast<int>(t));
+                       if (r1 - 1 > r0) passes_.gather(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
+                     },
+                     {}});
   } else {
-    run(&job_bonds);
-    run(&job_centres);
-    run(&job_gather);
+    evaluation_.add(bonds_phase());
+    evaluation_.add(centres_phase());
+    evaluation_.add({"lattice: gather", false,
+                     [this](std::size_t t, std::size_t nt) {
+                       const auto [i0, i1] = worker_range(lattice_.n, t, nt);
+                       passes_.gather(ctx_, i0, i1, static_cast<int>(t));
+                     },
+                     {}});
   }
+  accelerations_.add(evaluation_);
+  // Where the next step starts from: failures in it are frozen where they happened.
+  if (ctx_.freeze)
+    accelerations_.add({"lattice: previous positions", false,
+                        [this](std::size_t t, std::size_t nt) {
+                          const auto [i0, i1] = worker_range(lattice_.n, t, nt);
+                          const std::size_t n = lattice_.n;
+                          std::copy(ctx_.x + i0, ctx_.x + i1, q_prev_.begin() + static_cast<std::ptrdiff_t>(i0));
+                          std::copy(ctx_.y + i0, ctx_.y + i1, q_prev_.begin() + static_cast<std::ptrdiff_t>(n + i0));
+                        },
+                        {}});
+  const auto blocks_of = [this](std::size_t t, std::size_t nt) { return worker_range(blocks_.size() / 4, t, nt); };
+  energy_.add(bonds_phase());
+  energy_.add({"lattice: energy", false,
+               [this, blocks_of](std::size_t t, std::size_t nt) {
+                 const auto [k0, k1] = blocks_of(t, nt);
+                 passes_.energy(ctx_, k0, k1);
+               },
+               {}});
+  virial_.add(bonds_phase());
+  virial_.add(centres_phase());
+  virial_.add({"lattice: virial", false,
+               [this, blocks_of](std::size_t t, std::size_t nt) {
+                 const auto [k0, k1] = blocks_of(t, nt);
+                 virial_blocks(ctx_, k0, k1);
+               },
+               {}});
 }
 
 void Model::set_box(const Eigen::Matrix2d& F) {
@@ -242,7 +259,7 @@ void Model::prescribe(double t, std::span<double> q, std::span<double> v, std::s
   }
 }
 
-void Model::bind(std::span<const double> q, std::span<const double> v, std::span<double> a, bool track) {
+void Model::bind_state(std::span<const double> q, std::span<const double> v, std::span<double> a, bool track) {
   const std::size_t n = lattice_.n;
   ctx_.x = q.data();
   ctx_.y = q.data() + n;
@@ -253,22 +270,19 @@ void Model::bind(std::span<const double> q, std::span<const double> v, std::span
   ctx_.track = track;
 }
 
-void Model::run(Job job) {
-  if (threads_ == 1) {
-    job(this, 0, 1);
-    return;
-  }
-#pragma omp parallel num_threads(threads_)
-  job(this, omp_get_thread_num(), omp_get_num_threads());
+void Model::accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
+  bind(t, q, v, a);
+  accelerations_.run(team_size());
 }
 
-void Model::accelerations(double, std::span<const double> q, std::span<const double> v, std::span<double> a) {
-  bind(q, v, a, true);
-  evaluate();
-  if (ctx_.freeze) {  // where the next step starts from: failures in it are frozen where they happened
-    q_prev_.assign(q.begin(), q.end());
-    ctx_.x_prev = q_prev_.data();
-    ctx_.y_prev = q_prev_.data() + lattice_.n;
+void Model::bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
+  System::bind(t, q, v, a);
+  bind_state(q, v, a, true);
+  if (ctx_.freeze) {  // (the first evaluation has no previous positions: it freezes nothing in between)
+    const bool previous = !q_prev_.empty();
+    if (!previous) q_prev_.resize(2 * lattice_.n);
+    ctx_.x_prev = previous ? q_prev_.data() : nullptr;
+    ctx_.y_prev = previous ? q_prev_.data() + lattice_.n : nullptr;
   }
 }
 
@@ -291,16 +305,15 @@ void Model::visit_state(StateArchive& archive) {
 void Model::forces(std::span<const double> q, std::span<double> f) {
   const std::size_t n = lattice_.n;
   // Forces without damping: evaluate with zero velocities (the damping term vanishes exactly).
-  bind(q, zero_v_, f, false);
-  evaluate();
+  bind_state(q, zero_v_, f, false);
+  evaluation_.run(team_size());
   const double m = options_.node_mass;
   for (std::size_t k = 0; k < 2 * n; ++k) f[k] *= m;
 }
 
 Model::Energy Model::potential_energy(std::span<const double> q) {
-  bind(q, zero_v_, scratch_a_, false);
-  run(&job_bonds);
-  run(&job_energy);
+  bind_state(q, zero_v_, scratch_a_, false);
+  energy_.run(team_size());
   Energy e;
   const std::size_t blocks = blocks_.size() / 4;
   for (std::size_t k = 0; k < blocks; ++k) {
@@ -312,10 +325,8 @@ Model::Energy Model::potential_energy(std::span<const double> q) {
 }
 
 Eigen::Matrix2d Model::virial(std::span<const double> q) {
-  bind(q, zero_v_, scratch_a_, false);
-  run(&job_bonds);
-  run(&job_centres);
-  run(&job_virial);
+  bind_state(q, zero_v_, scratch_a_, false);
+  virial_.run(team_size());
   Eigen::Matrix2d w = Eigen::Matrix2d::Zero();
   const std::size_t blocks = blocks_.size() / 4;
   for (std::size_t k = 0; k < blocks; ++k) {

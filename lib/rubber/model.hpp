@@ -90,8 +90,12 @@ class Model final : public dynamics::System {
   void clamp(std::span<const std::size_t> nodes, std::span<const double> q, std::span<const double> v, double until);
   std::span<const std::size_t> clamped_nodes() const { return clamped_; }
 
-  // dynamics::System
+  // dynamics::System: the evaluation is its phases (core/phases) on a team of threads() threads: the passes of
+  // forces.hpp, then (energy-neutral failure) the positions the next evaluation's failures start from.
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  void bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
+  Phases force_phases() override { return accelerations_; }
+  std::size_t team_size() const override { return static_cast<std::size_t>(threads_); }
   std::span<const std::size_t> prescribed() const override { return prescribed_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
 
@@ -123,23 +127,17 @@ class Model final : public dynamics::System {
   std::string diagnose_nonfinite(std::span<const double> q, std::span<const double> a) const;
 
  private:
-  void bind(std::span<const double> q, std::span<const double> v, std::span<double> a, bool track);
-  // Runs job(this, worker, workers) on every thread of a parallel region of threads() threads (the caller alone
-  // for one). A job splits its work by worker (worker_range): every node's result is computed by the same
-  // instructions whichever thread runs it, so the thread count never changes a bit of the result.
-  using Job = void (*)(void* model, int worker, int workers);
-  void run(Job job);
-  void evaluate();  // bonds, centres and gather at the bound state
-  // The jobs.
-  static void job_bonds(void* m, int worker, int workers);
-  static void job_centres(void* m, int worker, int workers);
-  static void job_gather(void* m, int worker, int workers);
-  static void job_fused_a(void* m, int worker, int workers);
-  static void job_fused_b(void* m, int worker, int workers);
-  static void job_fused_c(void* m, int worker, int workers);
-  static void job_energy(void* m, int worker, int workers);
-  static void job_virial(void* m, int worker, int workers);
-  std::pair<std::size_t, std::size_t> rows_of(int worker, int workers) const;
+  void bind_state(std::span<const double> q, std::span<const double> v, std::span<double> a, bool track);
+  // The phase lists: each phase splits its nodes (or rows, or energy blocks) by thread (worker_range), and every
+  // node's result is computed by the same instructions whichever thread runs it, so the thread count never
+  // changes a bit of the result. evaluation_: bonds, centres and gather at the bound state (fused row by row
+  // when the layout allows); accelerations_: evaluation_ and the previous positions; energy_, virial_: the
+  // observables' passes.
+  Phases evaluation_, accelerations_, energy_, virial_;
+  void make_phases();
+  Phase bonds_phase();
+  Phase centres_phase();
+  std::pair<std::size_t, std::size_t> rows_of(std::size_t worker, std::size_t workers) const;
 
   Lattice lattice_;
   ModelOptions options_;
