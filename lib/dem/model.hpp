@@ -18,6 +18,7 @@
 #include "dem/contact_list.hpp"
 #include "dem/contact_search.hpp"
 #include "dem/material.hpp"
+#include "core/state_registry.hpp"
 #include "dynamics/integrator.hpp"
 
 namespace frac::dem {
@@ -88,8 +89,12 @@ class Model final : public dynamics::System {
   // Kinetic energies at (q, v): translational, rotational, J.
   std::array<double, 2> kinetic_energy(std::span<const double> v) const;
 
-  // The state a continuation needs (core/state_archive), under "model/": the beams and the neighbour list.
+  // The state a continuation needs (core/state_archive), under "model/": the beams and the neighbour list;
+  // declared to a run's registry (core/state_registry).
   void visit_state(StateArchive& archive);
+  void declare_state(StateRegistry& registry) {
+    registry.other([this](StateArchive& a) { visit_state(a); });
+  }
 
  private:
   // After an evaluation whose forces are not all finite: the first term, and the coordinate, where they

@@ -3,12 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
-#include "core/signals.hpp"
-#include "dynamics/runaway.hpp"
 
 namespace frac::dem {
 namespace {
@@ -36,215 +33,222 @@ std::string blame_non_finite(const Model& model, const dynamics::Integrator& in,
   return msg.str();
 }
 
+bool is_paper_law(const std::string& name) {
+  for (const ContactLawRow& row : contact_law_table())
+    if (row.name == name) return true;
+  return false;
+}
+
 }  // namespace
 
-RunSummary run_dem(Model& model, dynamics::Integrator& integrator, const DemScene& scene, const LoadingSetup& setup,
-                   std::vector<double> q0, std::vector<double> v0, double dt, io::RunWriter* writer,
-                   Progress& progress, double start_tau, const io::Continuation& continuation) {
-  RunSummary summary;
-  summary.dt = dt;
-  const std::size_t n = model.bodies().n;
-  const std::size_t nb = model.beams().size();
-  Ledger ledger;
-  std::vector<BeamBreak> broken;
+DemRun::DemRun(Model& model, dynamics::Integrator& integrator, const mesh::CellMesh& mesh, const DemScene& scene,
+               const LoadingSetup& setup, std::vector<double> q0, std::vector<double> v0, double dt, double start_tau)
+    : model_(model), integrator_(integrator), mesh_(mesh), scene_(scene), setup_(setup), q0_(std::move(q0)),
+      v0_(std::move(v0)), dt_(dt), start_tau_(start_tau), state_(model.bodies().n) {
+  ledger_.law_work.assign(model_.contact_laws().size(), 0.0);
+  previous_power_.assign(model_.contact_laws().size(), 0.0);
+  next_frame_ = scene_.output.frame_interval;
+  make_observables();
+  make_frames();
+}
 
-  const dynamics::RunawayGuard runaway(q0, n, "cell");
-  summary.start_evaluations =
-      dynamics::start(integrator, model, 0.0, dt, q0, v0, scene.integrator.start, start_tau);
-  std::vector<double>().swap(q0);  // (the integrator's state from here on)
-  std::vector<double>().swap(v0);
-  const ContactLaws& laws = model.contact_laws();
-  ledger.law_work.assign(laws.size(), 0.0);
-  std::vector<double> previous_power(laws.size());
-  for (std::size_t l = 0; l < laws.size(); ++l) previous_power[l] = model.law_power(l);
-  double previous_boundary_power = model.boundary_power();
-  auto write_frame = [&](std::int64_t step) {
-    if (!writer) return;
-    // (Its buffers only while it is written: memory between frames, when the neighbour list is rebuilt.)
-    io::BodyFrame frame;
-    frame.position.resize(2 * n);
-    frame.velocity.resize(2 * n);
-    frame.angle.resize(n);
-    frame.angular_velocity.resize(n);
-    frame.intact.resize(nb);
-    frame.strain.resize(nb);
-    const auto q = integrator.q();
-    const auto v = integrator.v();
-    for (std::size_t k = 0; k < n; ++k) {
-      frame.position[2 * k] = q[k];
-      frame.position[2 * k + 1] = q[n + k];
-      frame.velocity[2 * k] = v[k];
-      frame.velocity[2 * k + 1] = v[n + k];
-      frame.angle[k] = q[2 * n + k];
-      frame.angular_velocity[k] = v[2 * n + k];
-    }
-    const auto intact = model.beams().intact();
-    std::copy(intact.begin(), intact.end(), frame.intact.begin());
-    model.beams().strains(q, frame.strain);
-    frame.step = step;
-    frame.time = integrator.t();
-    writer->write_frame(frame);
-  };
-  // The work done by the law named `name` (0 when it is off).
-  auto law_work = [&](const std::string& name) {
-    for (std::size_t l = 0; l < laws.size(); ++l)
-      if (laws.names[l] == name) return ledger.law_work[l];
-    return 0.0;
-  };
-  auto is_paper_law = [](const std::string& name) {
-    for (const ContactLawRow& row : contact_law_table())
-      if (row.name == name) return true;
-    return false;
-  };
-  double e0 = 0;
-  auto observe = [&](std::int64_t step) {
-    const auto q = integrator.q();
-    runaway.check(q, step, integrator.t());
-    const auto v = integrator.v();
-    const auto ke = model.kinetic_energy(v);
-    const double ub = model.physics().beams ? model.beams().energy(q) : 0.0;
-    // The work done against each law (the energy it stored or dissipated), in the laws' order.
-    double against_laws = 0;
-    for (const double w : ledger.law_work) against_laws -= w;
-    const double balance = ke[0] + ke[1] + ub + against_laws + ledger.broken_energy - ledger.boundary;
-    if (step == 0) e0 = balance;
-    summary.energy_error = std::max(summary.energy_error, std::abs(balance - e0));
-    summary.energy_scale = std::max({summary.energy_scale, std::abs(e0), std::abs(ledger.boundary)});
-    if (!writer) return;
-    const double t = integrator.t();
-    writer->observe("kinetic_energy_translational", step, t, ke[0], "J");
-    writer->observe("kinetic_energy_rotational", step, t, ke[1], "J");
-    writer->observe("beam_energy", step, t, ub, "J");
-    // The paper's laws' work always (zero when off), then any other law's.
-    for (const ContactLawRow& row : contact_law_table())
-      writer->observe(row.name + "_work", step, t, -law_work(row.name), "J");
-    for (std::size_t l = 0; l < laws.size(); ++l)
-      if (!is_paper_law(laws.names[l])) writer->observe(laws.names[l] + "_work", step, t, -ledger.law_work[l], "J");
-    writer->observe("broken_beam_energy", step, t, ledger.broken_energy, "J");
-    writer->observe("boundary_work", step, t, ledger.boundary, "J");
-    writer->observe("energy_balance", step, t, balance, "J");
-    writer->observe("intact_beams", step, t, static_cast<double>(model.beams().intact_count()), "1");
-    writer->observe("contacts", step, t, static_cast<double>(model.contacts().size()), "1");
-    if (setup.probe.active) {
-      writer->observe("stress", step, t, setup.probe.stress(model.forces(), n), "Pa");
-      writer->observe("axial_strain", step, t, setup.probe.axial_strain(q, n), "1");
-      writer->observe("lateral_strain", step, t, setup.probe.lateral_strain(q, n), "1");
-    }
-  };
+void DemRun::start() {
+  runaway_.emplace(q0_, model_.bodies().n, "cell");
+  start_evaluations_ = dynamics::start(integrator_, model_, 0.0, dt_, q0_, v0_, scene_.integrator.start, start_tau_);
+  std::vector<double>().swap(q0_);  // (the integrator's state from here on)
+  std::vector<double>().swap(v0_);
+  for (std::size_t l = 0; l < previous_power_.size(); ++l) previous_power_[l] = model_.law_power(l);
+  previous_boundary_power_ = model_.boundary_power();
+  declare_state();  // (the integrator's fields are the size the start gave them)
+}
 
-  double next_frame = scene.output.frame_interval;
-  std::int64_t last_break_step = -1;
-  const StopRule& stop = scene.stop;
-  const bool breaking = model.physics().breaking;
-  std::int64_t step = 0;
-  // Everything the loop carries from step to step: what a checkpoint saves and a continuation loads.
-  const auto visit_state = [&](StateArchive& a) {
-    integrator.visit_state(a);
-    model.visit_state(a);
+// Everything the run carries from step to step: what a checkpoint saves and a continuation loads.
+void DemRun::declare_state() {
+  integrator_.declare_state(state_);
+  model_.declare_state(state_);
+  state_.other([this](StateArchive& a) {
+    const std::size_t laws = model_.contact_laws().size(), nb = model_.beams().size();
     StateArchive::Scope scope(a, "run");
-    a.value("step", step);
-    a.value("next_frame", next_frame);
-    a.value("last_break_step", last_break_step);
-    a.array("law_work", ledger.law_work, laws.size());
-    a.value("boundary_work", ledger.boundary);
-    a.value("broken_energy", ledger.broken_energy);
-    a.array("previous_law_power", previous_power, laws.size());
-    a.value("previous_boundary_power", previous_boundary_power);
-    a.value("initial_balance", e0);
-    a.value("energy_error", summary.energy_error);
-    a.value("energy_scale", summary.energy_scale);
-    a.value("start_evaluations", summary.start_evaluations);
-    std::size_t broken_count = broken.size();
+    a.value("next_frame", next_frame_);
+    a.value("last_break_step", last_break_step_);
+    a.array("law_work", ledger_.law_work, laws);
+    a.value("boundary_work", ledger_.boundary);
+    a.value("broken_energy", ledger_.broken_energy);
+    a.array("previous_law_power", previous_power_, laws);
+    a.value("previous_boundary_power", previous_boundary_power_);
+    a.value("initial_balance", e0_);
+    a.value("energy_error", energy_error_);
+    a.value("energy_scale", energy_scale_);
+    a.value("start_evaluations", start_evaluations_);
+    std::size_t broken_count = broken_.size();
     a.value("broken", broken_count);
     if (a.loading()) {
       if (broken_count > nb) a.refuse("broken", "more broken beams than the mesh has");
-      broken.assign(broken_count, BeamBreak{});
+      broken_.assign(broken_count, BeamBreak{});
     }
-    a.field("broken_beam", broken, &BeamBreak::beam);
-    a.field("broken_mode", broken, &BeamBreak::mode);
-    a.field("broken_energy_each", broken, &BeamBreak::energy);
+    a.field("broken_beam", broken_, &BeamBreak::beam);
+    a.field("broken_mode", broken_, &BeamBreak::mode);
+    a.field("broken_energy_each", broken_, &BeamBreak::energy);
+  });
+}
+
+Phases DemRun::step_phases() {
+  // The integrator's phases around the model's, then the breaking pass (on the state the step ends in).
+  return integrator_.step_phases(model_, model_.physics().breaking ? model_.beams().breaking_phases() : Phases{});
+}
+
+void DemRun::bind_step() {
+  broken_before_ = broken_.size();
+  if (model_.physics().breaking)
+    model_.beams().bind_breaking(integrator_.q(), model_.material().t_eps, model_.material().t_theta, broken_);
+  integrator_.begin_step(model_);
+}
+
+void DemRun::after_step(std::int64_t step, std::vector<run::Event>& events) {
+  // Ledger: the power of each term integrated by the trapezoidal rule between force evaluations.
+  for (std::size_t l = 0; l < previous_power_.size(); ++l) {
+    ledger_.law_work[l] += 0.5 * (previous_power_[l] + model_.law_power(l)) * dt_;
+    previous_power_[l] = model_.law_power(l);
+  }
+  ledger_.boundary += 0.5 * (previous_boundary_power_ + model_.boundary_power()) * dt_;
+  previous_boundary_power_ = model_.boundary_power();
+  if (!model_.non_finite_term().empty() || !integrator_.finite())
+    throw RuntimeError(blame_non_finite(model_, integrator_, step));
+  for (std::size_t k = broken_before_; k < broken_.size(); ++k) {
+    ledger_.broken_energy += broken_[k].energy;
+    events.push_back({broken_[k].beam, static_cast<std::uint8_t>(broken_[k].mode)});
+  }
+  if (broken_.size() > broken_before_) last_break_step_ = step;
+}
+
+std::string DemRun::stop_reason(std::int64_t step) const {
+  const StopRule& stop = scene_.stop;
+  if (integrator_.t() >= stop.t_max * (1 - 1e-12)) return "t_max";
+  if (step >= stop.max_steps) return "max_steps";
+  if (model_.physics().breaking && stop.steps_without_breaking > 0 && last_break_step_ >= 0 &&
+      step - last_break_step_ >= stop.steps_without_breaking)
+    return "no beam broke for " + std::to_string(stop.steps_without_breaking) + " steps";
+  return "";
+}
+
+bool DemRun::frame_due() const { return integrator_.t() >= next_frame_ * (1 - 1e-12); }
+
+void DemRun::frame_written() {
+  // An interval shorter than a step: one frame a step, the frames passed over skipped at once (not one by one:
+  // 1e-300 s would loop for ever).
+  const double t = integrator_.t(), fi = scene_.output.frame_interval, now = t * (1 + 1e-12);
+  next_frame_ += std::max(0.0, std::floor((now - next_frame_) / fi)) * fi;  // (0 for an interval of a step or more)
+  while (next_frame_ <= now) {
+    const double after = next_frame_ + fi;
+    next_frame_ = after > next_frame_ ? after : t * (1 + 2e-12);
+  }
+}
+
+void DemRun::measure(std::int64_t step) {
+  const auto q = integrator_.q();
+  runaway_->check(q, step, integrator_.t());
+  measured_.kinetic = model_.kinetic_energy(integrator_.v());
+  measured_.beam_energy = model_.physics().beams ? model_.beams().energy(q) : 0.0;
+  // The work done against each law (the energy it stored or dissipated), in the laws' order.
+  double against_laws = 0;
+  for (const double w : ledger_.law_work) against_laws -= w;
+  measured_.balance = measured_.kinetic[0] + measured_.kinetic[1] + measured_.beam_energy + against_laws +
+                      ledger_.broken_energy - ledger_.boundary;
+  if (step == 0) e0_ = measured_.balance;
+  energy_error_ = std::max(energy_error_, std::abs(measured_.balance - e0_));
+  energy_scale_ = std::max({energy_scale_, std::abs(e0_), std::abs(ledger_.boundary)});
+}
+
+double DemRun::law_work(const std::string& name) const {
+  const ContactLaws& laws = model_.contact_laws();
+  for (std::size_t l = 0; l < laws.size(); ++l)
+    if (laws.names[l] == name) return ledger_.law_work[l];
+  return 0.0;
+}
+
+void DemRun::make_observables() {
+  auto add = [&](std::string name, std::string unit, std::function<double()> value) {
+    observables_.push_back({std::move(name), std::move(unit), std::move(value)});
   };
-  if (continuation.resume) {
-    visit_state(*continuation.resume);
-  } else {
-    observe(0);
-    write_frame(0);
-  }
-  const std::int64_t first_step = step;  // (of this process: the rate and the ETA count from here)
-  const double first_t = integrator.t();
-  std::optional<DeferSignals> defer;
-  if (continuation.checkpoints) defer.emplace();
-  // A step: the integrator's phases around the model's, then the breaking pass (on the state the step ends in).
-  Beams& beams = model.beams();
-  Phases step_phases = integrator.step_phases(model, breaking ? beams.breaking_phases() : Phases{});
-  const std::size_t team = integrator.team_for(model);
-  for (;;) {
-    const std::size_t before = broken.size();
-    if (breaking) beams.bind_breaking(integrator.q(), model.material().t_eps, model.material().t_theta, broken);
-    integrator.begin_step(model);
-    step_phases.run(team);
-    ++step;
-    // Ledger: the power of each term integrated by the trapezoidal rule between force evaluations.
-    for (std::size_t l = 0; l < laws.size(); ++l) {
-      ledger.law_work[l] += 0.5 * (previous_power[l] + model.law_power(l)) * dt;
-      previous_power[l] = model.law_power(l);
-    }
-    ledger.boundary += 0.5 * (previous_boundary_power + model.boundary_power()) * dt;
-    previous_boundary_power = model.boundary_power();
-    if (!model.non_finite_term().empty() || !integrator.finite())
-      throw RuntimeError(blame_non_finite(model, integrator, step));
-    if (breaking) {
-      for (std::size_t k = before; k < broken.size(); ++k) {
-        ledger.broken_energy += broken[k].energy;
-        if (writer)
-          writer->record_break({step, integrator.t(), broken[k].beam, static_cast<std::uint8_t>(broken[k].mode)});
+  add("kinetic_energy_translational", "J", [this] { return measured_.kinetic[0]; });
+  add("kinetic_energy_rotational", "J", [this] { return measured_.kinetic[1]; });
+  add("beam_energy", "J", [this] { return measured_.beam_energy; });
+  // The paper's laws' work always (zero when off), then any other law's.
+  for (const ContactLawRow& row : contact_law_table())
+    add(row.name + "_work", "J", [this, name = row.name] { return -law_work(name); });
+  const ContactLaws& laws = model_.contact_laws();
+  for (std::size_t l = 0; l < laws.size(); ++l)
+    if (!is_paper_law(laws.names[l])) add(laws.names[l] + "_work", "J", [this, l] { return -ledger_.law_work[l]; });
+  add("broken_beam_energy", "J", [this] { return ledger_.broken_energy; });
+  add("boundary_work", "J", [this] { return ledger_.boundary; });
+  add("energy_balance", "J", [this] { return measured_.balance; });
+  add("intact_beams", "1", [this] { return static_cast<double>(model_.beams().intact_count()); });
+  add("contacts", "1", [this] { return static_cast<double>(model_.contacts().size()); });
+  if (!setup_.probe.active) return;
+  const std::size_t n = model_.bodies().n;
+  add("stress", "Pa", [this, n] { return setup_.probe.stress(model_.forces(), n); });
+  add("axial_strain", "1", [this, n] { return setup_.probe.axial_strain(integrator_.q(), n); });
+  add("lateral_strain", "1", [this, n] { return setup_.probe.lateral_strain(integrator_.q(), n); });
+}
+
+void DemRun::make_frames() {
+  const std::size_t n = model_.bodies().n, nb = model_.beams().size();
+  // Cell k's component `c` of q or v (x, y: interleaved; the angle alone).
+  const auto pairs = [this, n](bool velocity) {
+    return [this, n, velocity](std::span<double> out) {
+      const auto s = velocity ? integrator_.v() : integrator_.q();
+      for (std::size_t k = 0; k < n; ++k) {
+        out[2 * k] = s[k];
+        out[2 * k + 1] = s[n + k];
       }
-      if (broken.size() > before) last_break_step = step;
-    }
-    const double t = integrator.t();
-    std::string reason;
-    if (t >= stop.t_max * (1 - 1e-12)) reason = "t_max";
-    else if (step >= stop.max_steps) reason = "max_steps";
-    else if (breaking && stop.steps_without_breaking > 0 && last_break_step >= 0 &&
-             step - last_break_step >= stop.steps_without_breaking)
-      reason = "no beam broke for " + std::to_string(stop.steps_without_breaking) + " steps";
-    if (step % scene.output.observe_every == 0 || !reason.empty()) observe(step);
-    if (t >= next_frame * (1 - 1e-12) || !reason.empty()) {
-      write_frame(step);
-      // An interval shorter than a step: one frame a step, the frames passed over skipped at once (not
-      // one by one: 1e-300 s would loop for ever).
-      const double fi = scene.output.frame_interval, now = t * (1 + 1e-12);
-      next_frame += std::max(0.0, std::floor((now - next_frame) / fi)) * fi;  // (0 for an interval of a step or more)
-      while (next_frame <= now) {
-        const double after = next_frame + fi;
-        next_frame = after > next_frame ? after : t * (1 + 2e-12);
-      }
-    }
-    progress.tick([&] {
-      std::ostringstream s;
-      s.precision(3);
-      const double el = progress.elapsed();
-      s << "t = " << t << " s, step " << step << ", " << static_cast<double>(step - first_step) / std::max(el, 1e-9)
-        << " steps/s, " << broken.size() << " beams broken, ETA "
-        << (stop.t_max - t) / std::max(t - first_t, 1e-30) * el << " s (at most)";
-      return s.str();
-    });
-    if (!reason.empty()) {
-      summary.stop_reason = reason;
-      break;
-    }
-    if (io::Checkpoints* ck = continuation.checkpoints) {
-      if (ck->due(step)) ck->write(step, t, visit_state);
-      ck->stop_if_signalled(step, t, visit_state);
-    }
-  }
-  if (writer) writer->finish();
-  summary.phases = step_phases.times();
-  summary.steps = step;
-  summary.time = integrator.t();
-  summary.broken = static_cast<std::int64_t>(broken.size());
-  summary.wall_seconds = progress.elapsed();
-  return summary;
+    };
+  };
+  const auto turns = [this, n](bool velocity) {
+    return [this, n, velocity](std::span<double> out) {
+      const auto s = velocity ? integrator_.v() : integrator_.q();
+      std::copy(s.begin() + static_cast<std::ptrdiff_t>(2 * n), s.begin() + static_cast<std::ptrdiff_t>(3 * n), out.begin());
+    };
+  };
+  const std::string cells = "particles/cells", beams = "connectivity/beams/trajectory";
+  frames_.push_back({cells, "position", "m", n, 2, false, pairs(false), {}});
+  frames_.push_back({cells, "velocity", "m s-1", n, 2, false, pairs(true), {}});
+  frames_.push_back({cells, "angle", "rad", n, 1, false, turns(false), {}});
+  frames_.push_back({cells, "angular_velocity", "rad s-1", n, 1, false, turns(true), {}});
+  frames_.push_back({beams, "intact", "", nb, 1, true, {}, [this](std::span<std::uint8_t> out) {
+                       const auto intact = model_.beams().intact();
+                       std::copy(intact.begin(), intact.end(), out.begin());
+                     }});
+  frames_.push_back({beams, "strain", "1", nb, 1, false,
+                     [this](std::span<double> out) { model_.beams().strains(integrator_.q(), out); }, {}});
+}
+
+run::RunBodies DemRun::bodies() const {
+  return {&mesh_, nullptr, model_.bodies().mass, model_.bodies().inertia};
+}
+
+std::string DemRun::progress_line(std::int64_t step, std::int64_t first_step, double first_t, double elapsed) const {
+  std::ostringstream s;
+  s.precision(3);
+  const double t = integrator_.t();
+  s << "t = " << t << " s, step " << step << ", " << static_cast<double>(step - first_step) / std::max(elapsed, 1e-9)
+    << " steps/s, " << broken_.size() << " beams broken, ETA "
+    << (scene_.stop.t_max - t) / std::max(t - first_t, 1e-30) * elapsed << " s (at most)";
+  return s.str();
+}
+
+RunSummary DemRun::summary(const run::Outcome& outcome) const {
+  RunSummary s;
+  s.steps = outcome.steps;
+  s.time = outcome.time;
+  s.dt = dt_;
+  s.broken = static_cast<std::int64_t>(broken_.size());
+  s.stop_reason = outcome.stop_reason;
+  s.energy_error = energy_error_;
+  s.energy_scale = energy_scale_;
+  s.wall_seconds = outcome.wall_seconds;
+  s.start_evaluations = start_evaluations_;
+  s.phases = outcome.phases;
+  return s;
 }
 
 }  // namespace frac::dem

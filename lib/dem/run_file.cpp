@@ -3,11 +3,9 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/checkpoint.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
-#include "io/output_file.hpp"
-#include "io/run_io.hpp"
+#include "run/run_file.hpp"
 
 namespace frac::dem {
 namespace {
@@ -46,26 +44,12 @@ mesh::CellMesh read_run_mesh(const io::Group& in, const std::string& name) {
 RunSummary run_to_file(Simulation& sim, const Scene& scene, ToolRun run, const io::Group& input,
                        const std::string& output, const CheckpointOptions& checkpoint, Progress& progress) {
   add_derived(run, sim);
-  io::add_input(run, input);
-  io::RunCheckpoints checkpoints(checkpoint, output, run, [&](const std::string& m) { progress.note(m); });
-  io::OutputFile out(output);
-  io::write_header(out.root(), "run", run, out.uuid());
-  out.root().group("parameters/dem-run").write_strings("scene_text", {scene.source_text()});
-  io::RunWriter writer(out.root(), *sim.cell_mesh, sim.model.bodies().mass, sim.model.bodies().inertia);
-  const io::Continuation continuation = checkpoints.start(writer);
-  RunSummary s = checkpoints.guard([&] {
-    RunSummary r = sim.run(&writer, progress, continuation);
-    out.root().set_attr("steps", static_cast<std::int64_t>(r.steps));
-    out.root().set_attr("end_time", r.time);
-    out.root().set_attr("stop_reason", r.stop_reason);
-    out.root().set_attr("wall_seconds", r.wall_seconds, "provenance");  // differs run to run: not data
-    out.root().set_attr("start_evaluations", static_cast<std::int64_t>(r.start_evaluations));
-    out.commit();
-    return r;
-  });
-  s.checkpoints = checkpoints.written();
-  s.checkpoint_seconds = checkpoints.seconds();
-  checkpoints.finish();
+  DemRun engine = sim.engine();
+  const run::FileOutcome f =
+      run::run_to_file(engine, "dem-run", scene.source_text(), std::move(run), input, output, checkpoint, progress);
+  RunSummary s = engine.summary(f.run);
+  s.checkpoints = f.checkpoints;
+  s.checkpoint_seconds = f.checkpoint_seconds;
   return s;
 }
 

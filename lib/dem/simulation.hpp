@@ -1,6 +1,6 @@
 #pragma once
 // One DEM simulation from a mesh and a resolved scene: the model, the loading, the time step and the
-// integrator, ready to run. What dem-run (and tests, benchmarks) build before calling run_dem.
+// integrator, ready to run (its engine for run/driver). What dem-run (and tests, benchmarks) build.
 #include <algorithm>
 #include <memory>
 #include <utility>
@@ -24,10 +24,15 @@ struct Simulation {
   TimeStep time_step;
   std::unique_ptr<dynamics::Integrator> integrator;
   std::vector<double> q0, v0;
-  // Runs the simulation, once: q0 and v0 move into the run (and are empty after it).
-  RunSummary run(io::RunWriter* writer, Progress& progress, const io::Continuation& continuation = {}) {
-    return run_dem(model, *integrator, scene, setup, std::move(q0), std::move(v0), time_step.dt, writer, progress,
-                   start_tau(), continuation);
+  // The run of this simulation, once: q0 and v0 move into it (and are empty after it).
+  DemRun engine() {
+    return DemRun(model, *integrator, *cell_mesh, scene, setup, std::move(q0), std::move(v0), time_step.dt,
+                  start_tau());
+  }
+  // Runs it without output (tests, benchmarks).
+  RunSummary run(Progress& progress) {
+    DemRun e = engine();
+    return e.summary(run::drive(e, progress));
   }
   // Time scale of an exact start: 0.1 of the fastest motion (ω_max, or the damping rate γ_max).
   double start_tau() const {

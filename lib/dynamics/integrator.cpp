@@ -197,9 +197,18 @@ int start(Integrator& integrator, System& system, double t0, double dt, std::spa
   return ts.evaluations;
 }
 
-void Integrator::visit_clock(StateArchive& archive) {
-  archive.value("t", t_);
-  archive.value("steps", steps_);
+void Integrator::declare_clock(StateRegistry& registry) {
+  registry.other([this](StateArchive& a) {
+    StateArchive::Scope scope(a, "integrator");
+    a.value("t", t_);
+    a.value("steps", steps_);
+  });
+}
+
+void Integrator::visit_state(StateArchive& archive) {
+  StateRegistry registry(n_ / blocks_);
+  declare_state(registry);
+  registry.visit(archive);
 }
 
 void System::bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) {
@@ -245,6 +254,7 @@ constexpr double kGearC[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 /
 void Gear5::start(System& system, double t0, double dt, std::span<const double> q0, std::span<const double> v0) {
   step_system_ = nullptr;
   n_ = q0.size();
+  blocks_ = system.coordinate_blocks();
   t_ = t0;
   dt_ = dt;
   steps_ = 0;
@@ -277,21 +287,13 @@ void Gear5::set_velocity(std::size_t i, double value) {
   r(1, i) = dt_ * value;
 }
 
-void Gear5::visit_state(StateArchive& archive) {
-  StateArchive::Scope scope(archive, "integrator");
-  visit_clock(archive);
-  archive.array("q", r_[0], n_);
-  archive.array("v", v_, n_);
-  archive.array("a", a_, n_);
-  // r1..r5 in the system's order (the layout of the threads' parts depends on the thread count).
-  std::vector<double> rk(n_);
-  for (int k = 1; k < 6; ++k) {
-    if (!archive.loading())
-      for (std::size_t i = 0; i < n_; ++i) rk[i] = r(k, i);
-    archive.array("r" + std::to_string(k), rk, n_);
-    if (archive.loading())
-      for (std::size_t i = 0; i < n_; ++i) r(k, i) = rk[i];
-  }
+void Gear5::declare_state(StateRegistry& registry) {
+  declare_clock(registry);
+  registry.cell_field({"integrator/q", &r_[0], blocks_, nullptr});
+  registry.cell_field({"integrator/v", &v_, blocks_, nullptr});
+  registry.cell_field({"integrator/a", &a_, blocks_, nullptr});
+  // r1..r5 saved in the system's order (the layout of the threads' parts depends on the thread count).
+  for (int k = 1; k < 6; ++k) registry.cell_field({"integrator/r" + std::to_string(k), &r_[k], blocks_, &layout_});
 }
 
 void Gear5::apply_prescribed(const System& system, double t) {
@@ -388,18 +390,18 @@ Phases Gear5::step_phases(System& system, const Phases& after) {
 }
 
 // ---------------------------------------------------------------- velocity Verlet
-void VelocityVerlet::visit_state(StateArchive& archive) {
-  StateArchive::Scope scope(archive, "integrator");
-  visit_clock(archive);
-  archive.array("q", q_, n_);
-  archive.array("v", v_, n_);
-  archive.array("a", a_, n_);
+void VelocityVerlet::declare_state(StateRegistry& registry) {
+  declare_clock(registry);
+  registry.cell_field({"integrator/q", &q_, blocks_, nullptr});
+  registry.cell_field({"integrator/v", &v_, blocks_, nullptr});
+  registry.cell_field({"integrator/a", &a_, blocks_, nullptr});
 }
 
 void VelocityVerlet::start(System& system, double t0, double dt, std::span<const double> q0,
                            std::span<const double> v0) {
   step_system_ = nullptr;
   n_ = q0.size();
+  blocks_ = system.coordinate_blocks();
   t_ = t0;
   dt_ = dt;
   steps_ = 0;

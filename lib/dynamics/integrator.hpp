@@ -20,6 +20,7 @@
 #include "core/phases.hpp"
 #include "core/scene.hpp"
 #include "core/state_archive.hpp"
+#include "core/state_registry.hpp"
 
 namespace frac::dynamics {
 
@@ -119,13 +120,15 @@ class Integrator {
   // Whether the last step left every integrated coordinate and velocity finite (checked in the step's last
   // pass over them, at no extra pass; prescribed coordinates follow the scene's motion).
   bool finite() const { return finite_; }
-  // The state a continuation needs (core/state_archive), under "integrator/": time, step count, positions,
-  // velocities, accelerations and gear5's higher derivatives. Loading needs a started integrator of the same
-  // size.
-  virtual void visit_state(StateArchive& archive) = 0;
+  // The state a continuation needs (core/state_registry), under "integrator/": time, step count, and the
+  // per-cell fields positions q, velocities v, accelerations a and gear5's higher derivatives r1..r5, the system's
+  // coordinate blocks a cell. Loading needs a started integrator of the same size.
+  virtual void declare_state(StateRegistry& registry) = 0;
+  void visit_state(StateArchive& archive);  // (its registry alone)
 
  protected:
-  void visit_clock(StateArchive& archive);
+  void declare_clock(StateRegistry& registry);
+  std::size_t blocks_ = 1;  // the system's coordinate blocks: components a cell
   // The clock phase that ends a step: t += dt, one step more, finite from the threads' `bad` flags.
   Phase clock_phase(const TeamSlots<int>& bad);
   Phases step_;
@@ -190,7 +193,7 @@ class Gear5 final : public Integrator {
   std::span<const double> v() const override { return v_; }
   std::span<const double> a() const override { return a_; }
   void set_velocity(std::size_t i, double value) override;
-  void visit_state(StateArchive& archive) override;
+  void declare_state(StateRegistry& registry) override;
 
  private:
   void apply_prescribed(const System& system, double t);
@@ -214,7 +217,7 @@ class VelocityVerlet final : public Integrator {
   std::span<const double> v() const override { return v_; }
   std::span<const double> a() const override { return a_; }
   void set_velocity(std::size_t i, double value) override { v_[i] = value; }
-  void visit_state(StateArchive& archive) override;
+  void declare_state(StateRegistry& registry) override;
 
  private:
   std::vector<double> q_, v_, a_, v_est_;

@@ -31,7 +31,8 @@ std::uint64_t breaks_checksum(const std::vector<BreakEvent>& breaks) {
 
 RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const double> mass,
                      std::span<const double> inertia)
-    : root_(root), cells_(true), bodies_(mesh.cells()), links_(mesh.beams()) {
+    : root_(root), cells_(true), bodies_(mesh.cells()), links_(mesh.beams()),
+      specs_(standard_trajectory(true, bodies_, links_)) {
   root_.set_attr("model", "dem");
   write_mesh(root_, mesh);
   Group cells = root_.group(body_group(true));
@@ -40,53 +41,61 @@ RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const do
 }
 
 RunWriter::RunWriter(Group& root, const mesh::NodeMesh& mesh, std::span<const double> mass)
-    : root_(root), cells_(false), bodies_(mesh.position.size()), links_(mesh.bond.size()) {
+    : root_(root), cells_(false), bodies_(mesh.position.size()), links_(mesh.bond.size()),
+      specs_(standard_trajectory(false, bodies_, links_)) {
   root_.set_attr("model", "rubber");
   write_mesh(root_, mesh);
   Group nodes = root_.group(body_group(false));
   nodes.write("mass", mass, {bodies_}, "kg");
 }
 
+std::vector<SeriesSpec> standard_trajectory(bool cells, std::size_t bodies, std::size_t links) {
+  const std::string b = body_group(cells);
+  // The link series sit in a subgroup: the node mesh already has a static `intact` (the notch).
+  const std::string l = std::string(link_group(cells)) + "/trajectory";
+  std::vector<SeriesSpec> specs{{b, "position", {bodies, 2}, "m", false}, {b, "velocity", {bodies, 2}, "m s-1", false}};
+  if (cells) {
+    specs.push_back({b, "angle", {bodies}, "rad", false});
+    specs.push_back({b, "angular_velocity", {bodies}, "rad s-1", false});
+  }
+  specs.push_back({l, "intact", {links}, "", true});
+  specs.push_back({l, "strain", {links}, "1", false});
+  return specs;
+}
+
+void RunWriter::declare_trajectory(std::vector<SeriesSpec> specs) {
+  if (!series_.empty()) throw std::logic_error("RunWriter: the trajectory is declared before its first frame");
+  specs_ = std::move(specs);
+}
+
 void RunWriter::create_trajectory() {
-  {
-    Group bodies = root_.group(body_group(cells_));
-    // The link series sit in a subgroup: the node mesh already has a static `intact` (the notch).
-    Group links_root = root_.group(link_group(cells_));
-    Group links = links_root.create_group("trajectory");
-    position_ = std::make_unique<SeriesWriter>(bodies, "position", std::vector<hsize_t>{bodies_, 2}, "m");
-    velocity_ = std::make_unique<SeriesWriter>(bodies, "velocity", std::vector<hsize_t>{bodies_, 2}, "m s-1");
-    if (cells_) {
-      angle_ = std::make_unique<SeriesWriter>(bodies, "angle", std::vector<hsize_t>{bodies_}, "rad");
-      angular_velocity_ =
-          std::make_unique<SeriesWriter>(bodies, "angular_velocity", std::vector<hsize_t>{bodies_}, "rad s-1");
-    }
-    intact_ = std::make_unique<SeriesWriter>(links, "intact", std::vector<hsize_t>{links_}, "", SeriesType::uint8);
-    strain_ = std::make_unique<SeriesWriter>(links, "strain", std::vector<hsize_t>{links_}, "1");
+  for (const SeriesSpec& s : specs_) {
+    Group g = root_.has(s.group) ? root_.group(s.group) : root_.create_group(s.group);
+    series_.push_back(std::make_unique<SeriesWriter>(g, s.name, s.dims, s.unit,
+                                                     s.flags ? SeriesType::uint8 : SeriesType::float64));
   }
 }
 
-std::vector<RunWriter::Trajectory> RunWriter::trajectory() const {
-  const std::string bodies = body_group(cells_), links = std::string(link_group(cells_)) + "/trajectory";
-  std::vector<Trajectory> out{{position_.get(), bodies, "position"}, {velocity_.get(), bodies, "velocity"}};
-  if (cells_) {
-    out.push_back({angle_.get(), bodies, "angle"});
-    out.push_back({angular_velocity_.get(), bodies, "angular_velocity"});
-  }
-  out.push_back({intact_.get(), links, "intact"});
-  out.push_back({strain_.get(), links, "strain"});
-  return out;
+void RunWriter::append(std::size_t k, std::int64_t step, double time, std::span<const double> values) {
+  if (series_.empty()) create_trajectory();
+  series_.at(k)->append(step, time, values);
+}
+
+void RunWriter::append(std::size_t k, std::int64_t step, double time, std::span<const std::uint8_t> values) {
+  if (series_.empty()) create_trajectory();
+  series_.at(k)->append(step, time, values);
 }
 
 void RunWriter::write_frame(const BodyFrame& f) {
-  if (!position_) create_trajectory();
-  position_->append(f.step, f.time, std::span<const double>(f.position));
-  velocity_->append(f.step, f.time, std::span<const double>(f.velocity));
+  std::size_t k = 0;
+  append(k++, f.step, f.time, std::span<const double>(f.position));
+  append(k++, f.step, f.time, std::span<const double>(f.velocity));
   if (cells_) {
-    angle_->append(f.step, f.time, std::span<const double>(f.angle));
-    angular_velocity_->append(f.step, f.time, std::span<const double>(f.angular_velocity));
+    append(k++, f.step, f.time, std::span<const double>(f.angle));
+    append(k++, f.step, f.time, std::span<const double>(f.angular_velocity));
   }
-  intact_->append(f.step, f.time, std::span<const std::uint8_t>(f.intact));
-  strain_->append(f.step, f.time, std::span<const double>(f.strain));
+  append(k++, f.step, f.time, std::span<const std::uint8_t>(f.intact));
+  append(k++, f.step, f.time, std::span<const double>(f.strain));
 }
 
 SeriesWriter& RunWriter::observable(const std::string& name, std::vector<hsize_t> dims, std::string_view unit) {
@@ -106,8 +115,7 @@ void RunWriter::observe(const std::string& name, std::int64_t step, double time,
 }
 
 void RunWriter::flush() {
-  for (const Trajectory& t : trajectory())
-    if (t.series) t.series->flush();
+  for (const auto& series : series_) series->flush();
   for (auto& [name, series] : observables_) series->flush();
 }
 
@@ -122,8 +130,7 @@ void RunWriter::copy_progress(Group& to) {
     copy_group(root_, path, to);
     to.group(path).set_attr("checksum", static_cast<std::int64_t>(series.checksum()));
   };
-  for (const Trajectory& t : trajectory())
-    if (t.series) copy(t.parent + "/" + t.name, *t.series);
+  for (std::size_t k = 0; k < series_.size(); ++k) copy(specs_[k].group + "/" + specs_[k].name, *series_[k]);
   std::vector<std::string> names;
   for (auto& [name, series] : observables_) {
     copy("observables/" + name, *series);
@@ -135,9 +142,9 @@ void RunWriter::copy_progress(Group& to) {
 }
 
 void RunWriter::replay(const Group& from) {
-  if (from.has(std::string(body_group(cells_)) + "/position")) {
+  if (!specs_.empty() && from.has(specs_.front().group + "/" + specs_.front().name)) {
     create_trajectory();
-    for (const Trajectory& t : trajectory()) t.series->replay(from.group(t.parent), t.name);
+    for (std::size_t k = 0; k < series_.size(); ++k) series_[k]->replay(from.group(specs_[k].group), specs_[k].name);
   }
   if (!from.has(kObservableNames)) throw InputError(from.where() + ": not a checkpoint's copy of a run (no observable_names)");
   for (const std::string& name : from.read_strings(kObservableNames)) {

@@ -44,13 +44,31 @@ struct BreakEvent {
   std::uint8_t mode;   // 1 stretching dominated, 2 bending dominated
 };
 
+// A trajectory series of a run file: `group`/`name` (the group under the root, its missing parents created),
+// frames of shape `dims`, of numbers or of flags (uint8).
+struct SeriesSpec {
+  std::string group, name;
+  std::vector<hsize_t> dims;
+  std::string unit;
+  bool flags = false;
+};
+// The trajectory of the schema (above): position, velocity, (angle, angular_velocity,) intact, strain.
+std::vector<SeriesSpec> standard_trajectory(bool cells, std::size_t bodies, std::size_t links);
+
 class RunWriter {
  public:
   // Writes the mesh and the static per-body data under `root` (header written by the caller).
   RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const double> mass, std::span<const double> inertia);
   RunWriter(Group& root, const mesh::NodeMesh& mesh, std::span<const double> mass);
 
-  // Appends one trajectory frame (sizes checked against the mesh).
+  // The trajectory's series, in the order they are created at the first frame (the schema's by default); before
+  // the first frame or a replay.
+  void declare_trajectory(std::vector<SeriesSpec> specs);
+  bool trajectory_started() const { return !series_.empty(); }
+  // Appends a frame to series k of the trajectory (values of its shape).
+  void append(std::size_t k, std::int64_t step, double time, std::span<const double> values);
+  void append(std::size_t k, std::int64_t step, double time, std::span<const std::uint8_t> values);
+  // Appends one frame of the schema's trajectory (sizes checked against the mesh).
   void write_frame(const BodyFrame& frame);
   // Appends a scalar (or fixed-size vector) observable; the series is created at its first value.
   void observe(const std::string& name, std::int64_t step, double time, std::span<const double> value,
@@ -69,21 +87,17 @@ class RunWriter {
   // Continues from such a copy: its frames, observables and break events appended, as if this writer had
   // written them. InputError if they do not fit this run.
   void replay(const Group& from);
-  std::size_t frames() const { return position_ ? position_->frames() : 0; }
+  std::size_t frames() const { return series_.empty() ? 0 : series_.front()->frames(); }
 
  private:
-  void create_trajectory();
-  struct Trajectory {
-    SeriesWriter* series;
-    std::string parent, name;
-  };
-  std::vector<Trajectory> trajectory() const;  // the trajectory series (null before the first frame) and their paths
+  void create_trajectory();  // the declared series (at the first frame)
   SeriesWriter& observable(const std::string& name, std::vector<hsize_t> dims, std::string_view unit);
   void write_breaks(Group& root) const;
   Group& root_;  // outlives the writer (an OutputFile's root)
   bool cells_;
   std::size_t bodies_, links_;
-  std::unique_ptr<SeriesWriter> position_, velocity_, angle_, angular_velocity_, intact_, strain_;
+  std::vector<SeriesSpec> specs_;
+  std::vector<std::unique_ptr<SeriesWriter>> series_;  // one for each of specs_ from the first frame on
   std::map<std::string, std::unique_ptr<SeriesWriter>> observables_;
   std::vector<BreakEvent> breaks_;
 };

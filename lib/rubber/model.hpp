@@ -96,6 +96,7 @@ class Model final : public dynamics::System {
   void bind(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override;
   Phases force_phases() override { return accelerations_; }
   std::size_t team_size() const override { return static_cast<std::size_t>(threads_); }
+  std::size_t coordinate_blocks() const override { return 2; }  // x, y of every node
   std::span<const std::size_t> prescribed() const override { return prescribed_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override;
 

@@ -134,172 +134,80 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   throw out_of_memory("the rubber lattice of " + std::to_string(mesh.nodes()) + " nodes");
 }
 
+void SpeedFit::add(double tt, double xx) {
+  t[head] = tt;
+  x[head] = xx;
+  head = (head + 1) % t.size();
+  count = std::min(count + 1, t.size());
+}
+
+double SpeedFit::slope() const {
+  if (count < 2) return 0;
+  const std::size_t start = (head + t.size() - count) % t.size();
+  double mt = 0, mx = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    mt += t[(start + k) % t.size()];
+    mx += x[(start + k) % t.size()];
+  }
+  mt /= static_cast<double>(count);
+  mx /= static_cast<double>(count);
+  double stt = 0, stx = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double dt = t[(start + k) % t.size()] - mt;
+    stt += dt * dt;
+    stx += dt * (x[(start + k) % t.size()] - mx);
+  }
+  return stt > 0 ? stx / stt : 0;
+}
+
 namespace {
-
-// Least-squares slope of (t, x) over a ring buffer, in a fixed order.
-struct SpeedFit {
-  std::vector<double> t, x;
-  std::size_t head = 0, count = 0;
-  explicit SpeedFit(std::size_t capacity) : t(std::max<std::size_t>(capacity, 2)), x(t.size()) {}
-  void add(double tt, double xx) {
-    t[head] = tt;
-    x[head] = xx;
-    head = (head + 1) % t.size();
-    count = std::min(count + 1, t.size());
-  }
-  double slope() const {
-    if (count < 2) return 0;
-    const std::size_t start = (head + t.size() - count) % t.size();
-    double mt = 0, mx = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-      mt += t[(start + k) % t.size()];
-      mx += x[(start + k) % t.size()];
-    }
-    mt /= static_cast<double>(count);
-    mx /= static_cast<double>(count);
-    double stt = 0, stx = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-      const double dt = t[(start + k) % t.size()] - mt;
-      stt += dt * dt;
-      stx += dt * (x[(start + k) % t.size()] - mx);
-    }
-    return stt > 0 ? stx / stt : 0;
-  }
-};
-
+// The speed window in observations.
+std::size_t speed_window(const RubberScene& sc, double dt) {
+  return static_cast<std::size_t>(
+      std::min(1e6, std::ceil(sc.speed_window / (static_cast<double>(sc.observe_every) * dt)) + 1));
+}
 }  // namespace
 
-RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter* writer, Progress& progress,
-                         const io::Continuation& continuation) {
-  const RubberScene& sc = su.scene;
-  Model& model = *sys.model;
-  const Lattice& L = model.lattice();
-  const std::size_t n = L.n;
-  const CrackPath& path = *sys.path;
-  RubberSummary sum;
-  sum.dt = su.dt;
-  const double dt = su.dt;
+RubberRun::RubberRun(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh)
+    : sys_(system), setup_(setup), mesh_(mesh), model_(*system.model),
+      integ_(dynamics::make_integrator(setup.scene.integrator)), fit_(speed_window(setup.scene, setup.dt)),
+      next_frame_(setup.scene.frame_interval > 0 ? setup.scene.frame_interval : 1e300),
+      state_(model_.lattice().n) {
+  sum_.dt = setup.dt;
+  events_.reserve(model_.lattice().bonds());
+  make_observables();
+  make_frames();
+}
 
-  auto integ = dynamics::make_integrator(sc.integrator);
-  integ->start(model, 0.0, dt, sys.q0, sys.v0);
+void RubberRun::start() {
+  integ_->start(model_, 0.0, setup_.dt, sys_.q0, sys_.v0);
+  tip_ = sys_.path->tip(model_, integ_->q());
+  sum_.tip_start = tip_;
+  runaway_.emplace(integ_->q(), model_.lattice().n, "node");
+  declare_state();  // (the integrator's fields are the size the start gave them)
+}
 
-  // Everything the loop needs, allocated before it.
-  const std::size_t mesh_bonds = L.bond_id.size();
-  io::BodyFrame frame;
-  frame.position.resize(2 * n);
-  frame.velocity.resize(2 * n);
-  frame.intact.resize(mesh_bonds);
-  frame.strain.resize(mesh_bonds);
-  std::vector<std::size_t> events;
-  events.reserve(L.bonds());
-  const auto window = static_cast<std::size_t>(
-      std::min(1e6, std::ceil(sc.speed_window / (static_cast<double>(sc.observe_every) * dt)) + 1));
-  SpeedFit fit(window);
-  const std::string k_kinetic = "kinetic_energy", k_potential = "potential_energy", k_total = "total_energy",
-                    k_events = "bonds_past_cutoff", k_tip = "crack_tip_x", k_tip_ref = "crack_tip_reference_x",
-                    k_speed = "crack_tip_speed", k_tough = "toughened_bonds", k_drive = "drive_energy",
-                    k_frozen = "frozen_energy";
-  const bool freeze = model.options().failure == Failure::freeze;
-
-  auto write_frame = [&](std::int64_t step) {
-    if (!writer) return;
-    const auto q = integ->q();
-    const auto v = integ->v();
-    for (std::size_t i = 0; i < n; ++i) {
-      frame.position[2 * i] = q[i];
-      frame.position[2 * i + 1] = q[n + i];
-      frame.velocity[2 * i] = v[i];
-      frame.velocity[2 * i + 1] = v[n + i];
-    }
-    for (std::size_t k = 0; k < mesh_bonds; ++k) {
-      const auto b = static_cast<std::size_t>(L.bond_id[k]);
-      frame.intact[k] = model.holds(b, q) ? 1 : 0;
-      frame.strain[k] = model.bond_length(b, q) / L.spacing - 1;
-    }
-    frame.step = step;
-    frame.time = integ->t();
-    writer->write_frame(frame);
-  };
-
-  CrackPath::Tip tip = path.tip(model, integ->q());
-  sum.tip_start = tip;
-  std::int64_t last_observed = -1;
-  // The clamped rows move (and work on the sheet) until loading.ramp_time.
-  const double grips_stop = sc.ramp_time > 0 ? sc.ramp_time : 0.0;
-  const dynamics::RunawayGuard runaway(integ->q(), n, "node");
-  auto observe = [&](std::int64_t step) {
-    last_observed = step;
-    const auto q = integ->q();
-    runaway.check(q, step, integ->t());
-    const double ke = model.kinetic_energy(integ->v());
-    const Model::Energy energy = model.potential_energy(q);
-    const double pe = energy.total();
-    tip = path.tip(model, q);
-    // The speed is fitted to λx × reference x of the tip: the lab position of the crack in the far
-    // field (the tip's own nodes may fly off as debris).
-    if (tip.found) fit.add(integ->t(), su.F(0, 0) * tip.reference_x);
-    sum.tip_speed = fit.slope();
-    sum.energy_end = ke + pe;
-    if (step == 0) sum.energy_start = ke + pe;
-    if (!sum.energy_conserved_set && integ->t() >= grips_stop) {
-      sum.energy_conserved_set = true;
-      sum.energy_conserved = ke + pe;
-      sum.energy_conserved_time = integ->t();
-      sum.drive_energy_conserved = sum.drive_energy;
-    }
-    if (!writer) return;
-    const double t = integ->t();
-    writer->observe(k_kinetic, step, t, ke, "J");
-    writer->observe(k_potential, step, t, pe, "J");
-    writer->observe(k_total, step, t, ke + pe, "J");
-    writer->observe(k_events, step, t, static_cast<double>(sum.events), "1");
-    writer->observe(k_tip, step, t, tip.found ? tip.lab_x : std::nan(""), "m");
-    writer->observe(k_tip_ref, step, t, tip.found ? tip.reference_x : std::nan(""), "m");
-    writer->observe(k_speed, step, t, sum.tip_speed, "m s-1");
-    if (sc.toughening) writer->observe(k_tough, step, t, static_cast<double>(sum.toughened), "1");
-    if (sys.drive) writer->observe(k_drive, step, t, sum.drive_energy, "J");
-    if (freeze) writer->observe(k_frozen, step, t, energy.frozen, "J");
-  };
-
-  auto collect_events = [&](std::int64_t step) {
-    if (model.pending_events() == 0 && model.pending_breaks() == 0) return;
-    events.clear();
-    model.take_events(events);
-    sum.events += events.size();
-    sum.irreversible += static_cast<std::size_t>(model.pending_breaks());
-    model.clear_breaks();
-    if (!writer) return;
-    for (std::size_t b : events) {
-      const std::int64_t k = L.mesh_bond[b];
-      if (k >= 0) writer->record_break({step, integ->t(), k, 1});
-    }
-  };
-
-  std::int64_t step = 0;
-  double next_frame = sc.frame_interval > 0 ? sc.frame_interval : 1e300;
-  // Everything the loop carries from step to step: what a checkpoint saves and a continuation loads.
-  const auto visit_state = [&](StateArchive& a) {
-    integ->visit_state(a);
-    model.visit_state(a);
-    if (sys.drive) sys.drive->visit_state(a);
+// Everything the run carries from step to step: what a checkpoint saves and a continuation loads.
+void RubberRun::declare_state() {
+  integ_->declare_state(state_);
+  state_.other([this](StateArchive& a) { model_.visit_state(a); });
+  if (sys_.drive) state_.other([this](StateArchive& a) { sys_.drive->visit_state(a); });
+  state_.other([this](StateArchive& a) {
     StateArchive::Scope scope(a, "run");
-    a.value("step", step);
-    a.value("next_frame", next_frame);
-    a.value("last_observed", last_observed);
-    a.value("last_frame_step", frame.step);
-    a.value("events", sum.events);
-    a.value("irreversible", sum.irreversible);
-    a.value("toughened", sum.toughened);
-    a.value("driven", sum.driven);
-    a.value("drive_energy", sum.drive_energy);
-    a.value("energy_start", sum.energy_start);
-    a.value("energy_end", sum.energy_end);
-    a.value("energy_conserved_set", sum.energy_conserved_set);
-    a.value("energy_conserved", sum.energy_conserved);
-    a.value("energy_conserved_time", sum.energy_conserved_time);
-    a.value("drive_energy_conserved", sum.drive_energy_conserved);
-    a.value("tip_speed", sum.tip_speed);
-    for (auto [name, t] : {std::pair{"tip", &tip}, std::pair{"tip_start", &sum.tip_start}}) {
+    a.value("next_frame", next_frame_);
+    a.value("events", sum_.events);
+    a.value("irreversible", sum_.irreversible);
+    a.value("toughened", sum_.toughened);
+    a.value("driven", sum_.driven);
+    a.value("drive_energy", sum_.drive_energy);
+    a.value("energy_start", sum_.energy_start);
+    a.value("energy_end", sum_.energy_end);
+    a.value("energy_conserved_set", sum_.energy_conserved_set);
+    a.value("energy_conserved", sum_.energy_conserved);
+    a.value("energy_conserved_time", sum_.energy_conserved_time);
+    a.value("drive_energy_conserved", sum_.drive_energy_conserved);
+    a.value("tip_speed", sum_.tip_speed);
+    for (auto [name, t] : {std::pair{"tip", &tip_}, std::pair{"tip_start", &sum_.tip_start}}) {
       StateArchive::Scope tip_scope(a, name);
       a.value("found", t->found);
       a.value("bond", t->bond);
@@ -308,92 +216,155 @@ RubberSummary run_rubber(RubberSystem& sys, const RubberSetup& su, io::RunWriter
       a.value("broken", t->broken);
     }
     StateArchive::Scope fit_scope(a, "speed_fit");
-    a.array("t", fit.t, fit.t.size());
-    a.array("x", fit.x, fit.x.size());
-    a.value("head", fit.head);
-    a.value("count", fit.count);
-    if (a.loading() && (fit.head >= fit.t.size() || fit.count > fit.t.size()))
+    a.array("t", fit_.t, fit_.t.size());
+    a.array("x", fit_.x, fit_.x.size());
+    a.value("head", fit_.head);
+    a.value("count", fit_.count);
+    if (a.loading() && (fit_.head >= fit_.t.size() || fit_.count > fit_.t.size()))
       a.refuse("head", "outside the speed window");
-  };
-  if (continuation.resume) {
-    visit_state(*continuation.resume);
-  } else {
-    observe(0);
-    write_frame(0);
+  });
+}
+
+void RubberRun::after_step(std::int64_t step, std::vector<run::Event>& events) {
+  const RubberScene& sc = setup_.scene;
+  if (model_.nonfinite() > 0) [[unlikely]] {
+    std::ostringstream msg;
+    msg.precision(6);
+    msg << "non-finite force at step " << step << " (t = " << integ_->t()
+        << " s): " << model_.diagnose_nonfinite(integ_->q(), integ_->a())
+        << "; the time step may be too large for this scene";
+    throw RuntimeError(msg.str());
   }
-  const std::int64_t first_step = step;  // (of this process: the time loop's rate counts from here)
-  std::optional<DeferSignals> defer;
-  if (continuation.checkpoints) defer.emplace();
-  const std::string stop_tip = "the crack tip reached stop.tip_margin from the far edge";
-  std::string reason = "stop.t_max reached";
-  const std::function<std::string()> line = [&] {
-    std::ostringstream s;
-    s.precision(4);
-    s << "t = " << integ->t() << " s (" << std::lround(100 * integ->t() / sc.t_max) << "%), step " << step;
-    if (tip.found)
-      s << ", tip at x = " << tip.lab_x << " m (" << (tip.reference_x - sum.tip_start.reference_x) / L.spacing
-        << " spacings), v = " << sum.tip_speed << " m/s";
-    s << ", " << sum.events << " bonds past u_c";
-    return s.str();
+  if (sys_.drive && !sys_.drive->finished()) {
+    double change = 0;
+    sum_.driven += sys_.drive->cut(model_, integ_->t(), integ_->q(), change);
+    sum_.drive_energy += change;
+  }
+  if (model_.pending_events() > 0 || model_.pending_breaks() > 0) {
+    events_.clear();
+    model_.take_events(events_);
+    sum_.events += events_.size();
+    sum_.irreversible += static_cast<std::size_t>(model_.pending_breaks());
+    model_.clear_breaks();
+    for (std::size_t b : events_) {
+      const std::int64_t k = model_.lattice().mesh_bond[b];
+      if (k >= 0) events.push_back({k, 1});
+    }
+  }
+  if (sc.toughening && step % sc.toughening_every == 0)
+    sum_.toughened += model_.toughen(integ_->q(), sc.toughening_trigger, sc.toughening_cutoff);
+}
+
+std::string RubberRun::stop_reason(std::int64_t step) const {
+  if (tip_stop_) return "the crack tip reached stop.tip_margin from the far edge";
+  if (integ_->t() >= setup_.scene.t_max - 0.5 * setup_.dt) return "stop.t_max reached";
+  if (step >= setup_.scene.max_steps) return "stop.max_steps reached";
+  return "";
+}
+
+void RubberRun::measure(std::int64_t step) {
+  const RubberScene& sc = setup_.scene;
+  const auto q = integ_->q();
+  runaway_->check(q, step, integ_->t());
+  kinetic_ = model_.kinetic_energy(integ_->v());
+  energy_ = model_.potential_energy(q);
+  const double e = kinetic_ + energy_.total();
+  tip_ = sys_.path->tip(model_, q);
+  // The speed is fitted to λx × reference x of the tip: the lab position of the crack in the far field (the
+  // tip's own nodes may fly off as debris).
+  if (tip_.found) fit_.add(integ_->t(), setup_.F(0, 0) * tip_.reference_x);
+  sum_.tip_speed = fit_.slope();
+  sum_.energy_end = e;
+  if (step == 0) sum_.energy_start = e;
+  // The clamped rows move (and work on the sheet) until loading.ramp_time.
+  if (!sum_.energy_conserved_set && integ_->t() >= (sc.ramp_time > 0 ? sc.ramp_time : 0.0)) {
+    sum_.energy_conserved_set = true;
+    sum_.energy_conserved = e;
+    sum_.energy_conserved_time = integ_->t();
+    sum_.drive_energy_conserved = sum_.drive_energy;
+  }
+  // (The time loop's observations only: not the first state's.)
+  tip_stop_ = step > 0 && sc.tip_margin > 0 && tip_.found && tip_.reference_x > sys_.path->x_max() - sc.tip_margin;
+}
+
+void RubberRun::make_observables() {
+  const RubberScene& sc = setup_.scene;
+  auto add = [&](std::string name, std::string unit, std::function<double()> value) {
+    observables_.push_back({std::move(name), std::move(unit), std::move(value)});
   };
-  const double t_end = sc.t_max - 0.5 * dt;
-  bool stop = false;
-  const auto loop_start = std::chrono::steady_clock::now();
-  while (!stop) {
-    if (integ->t() >= t_end) break;
-    if (step >= sc.max_steps) {
-      reason = "stop.max_steps reached";
-      break;
-    }
-    integ->step(model);
-    ++step;
-    if (model.nonfinite() > 0) [[unlikely]] {
-      std::ostringstream msg;
-      msg.precision(6);
-      msg << "non-finite force at step " << step << " (t = " << integ->t()
-          << " s): " << model.diagnose_nonfinite(integ->q(), integ->a())
-          << "; the time step may be too large for this scene";
-      throw RuntimeError(msg.str());
-    }
-    if (sys.drive && !sys.drive->finished()) {
-      double change = 0;
-      sum.driven += sys.drive->cut(model, integ->t(), integ->q(), change);
-      sum.drive_energy += change;
-    }
-    collect_events(step);
-    if (sc.toughening && step % sc.toughening_every == 0)
-      sum.toughened += model.toughen(integ->q(), sc.toughening_trigger, sc.toughening_cutoff);
-    const bool at_frame = integ->t() >= next_frame - 0.5 * dt;
-    if (step % sc.observe_every == 0 || at_frame) {
-      observe(step);
-      if (sc.tip_margin > 0 && tip.found && tip.reference_x > path.x_max() - sc.tip_margin) {
-        reason = stop_tip;
-        stop = true;
+  add("kinetic_energy", "J", [this] { return kinetic_; });
+  add("potential_energy", "J", [this] { return energy_.total(); });
+  add("total_energy", "J", [this] { return kinetic_ + energy_.total(); });
+  add("bonds_past_cutoff", "1", [this] { return static_cast<double>(sum_.events); });
+  add("crack_tip_x", "m", [this] { return tip_.found ? tip_.lab_x : std::nan(""); });
+  add("crack_tip_reference_x", "m", [this] { return tip_.found ? tip_.reference_x : std::nan(""); });
+  add("crack_tip_speed", "m s-1", [this] { return sum_.tip_speed; });
+  if (sc.toughening) add("toughened_bonds", "1", [this] { return static_cast<double>(sum_.toughened); });
+  if (sys_.drive) add("drive_energy", "J", [this] { return sum_.drive_energy; });
+  if (model_.options().failure == Failure::freeze) add("frozen_energy", "J", [this] { return energy_.frozen; });
+}
+
+void RubberRun::make_frames() {
+  const Lattice& L = model_.lattice();
+  const std::size_t n = L.n, mesh_bonds = L.bond_id.size();
+  const auto pairs = [this, n](bool velocity) {
+    return [this, n, velocity](std::span<double> out) {
+      const auto s = velocity ? integ_->v() : integ_->q();
+      for (std::size_t i = 0; i < n; ++i) {
+        out[2 * i] = s[i];
+        out[2 * i + 1] = s[n + i];
       }
-    }
-    if (at_frame) {
-      write_frame(step);
-      next_frame += sc.frame_interval;
-    }
-    progress.tick(line);
-    if (io::Checkpoints* ck = continuation.checkpoints; ck && !stop) {
-      if (ck->due(step)) ck->write(step, integ->t(), visit_state);
-      ck->stop_if_signalled(step, integ->t(), visit_state);
-    }
-  }
-  sum.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
-  sum.nodes = n;
-  sum.loop_steps = step - first_step;
-  // The final state: always an observation and a frame.
-  if (last_observed != step) observe(step);
-  if (!writer || writer->frames() == 0 || frame.step != step) write_frame(step);
-  sum.steps = step;
-  sum.time = integ->t();
-  sum.stop_reason = reason;
-  sum.tip = tip;
-  sum.wall_seconds = progress.elapsed();
-  if (writer) writer->finish();
-  return sum;
+    };
+  };
+  const std::string nodes = "particles/nodes", bonds = "connectivity/bonds/trajectory";
+  frames_.push_back({nodes, "position", "m", n, 2, false, pairs(false), {}});
+  frames_.push_back({nodes, "velocity", "m s-1", n, 2, false, pairs(true), {}});
+  frames_.push_back({bonds, "intact", "", mesh_bonds, 1, true, {}, [this, &L](std::span<std::uint8_t> out) {
+                       for (std::size_t k = 0; k < out.size(); ++k)
+                         out[k] = model_.holds(static_cast<std::size_t>(L.bond_id[k]), integ_->q()) ? 1 : 0;
+                     }});
+  frames_.push_back({bonds, "strain", "1", mesh_bonds, 1, false,
+                     [this, &L](std::span<double> out) {
+                       for (std::size_t k = 0; k < out.size(); ++k)
+                         out[k] = model_.bond_length(static_cast<std::size_t>(L.bond_id[k]), integ_->q()) / L.spacing - 1;
+                     },
+                     {}});
+}
+
+run::RunBodies RubberRun::bodies() const {
+  return {nullptr, &mesh_, std::vector<double>(mesh_.nodes(), setup_.node_mass), {}};
+}
+
+std::string RubberRun::progress_line(std::int64_t step, std::int64_t, double, double) const {
+  std::ostringstream s;
+  s.precision(4);
+  s << "t = " << integ_->t() << " s (" << std::lround(100 * integ_->t() / setup_.scene.t_max) << "%), step " << step;
+  if (tip_.found)
+    s << ", tip at x = " << tip_.lab_x << " m ("
+      << (tip_.reference_x - sum_.tip_start.reference_x) / model_.lattice().spacing << " spacings), v = "
+      << sum_.tip_speed << " m/s";
+  s << ", " << sum_.events << " bonds past u_c";
+  return s.str();
+}
+
+RubberSummary RubberRun::summary(const run::Outcome& outcome) const {
+  RubberSummary s = sum_;
+  s.loop_seconds = outcome.loop_seconds;
+  s.nodes = model_.lattice().n;
+  s.loop_steps = outcome.loop_steps;
+  s.steps = outcome.steps;
+  s.time = outcome.time;
+  s.stop_reason = outcome.stop_reason;
+  s.tip = tip_;
+  s.wall_seconds = outcome.wall_seconds;
+  s.phases = outcome.phases;
+  return s;
+}
+
+RubberSummary run_rubber(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh,
+                         Progress& progress) {
+  RubberRun engine(system, setup, mesh);
+  return engine.summary(run::drive(engine, progress));
 }
 
 }  // namespace frac::rubber

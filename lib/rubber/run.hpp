@@ -2,21 +2,26 @@
 // A rubber-run: the model built from a mesh and a prepared scene, its initial state (pre-stretch,
 // clamps, seed crack, pulse, noise, tip kick), the time loop with the shared integrator, and what it
 // records: frames, observables (energies, bonds past u_c, crack tip and its speed) and bond-break
-// events, through io::RunWriter. The loop allocates nothing; progress goes to a core::Progress.
+// events, as an engine of the run driver (run/driver). The loop allocates nothing.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/phases.hpp"
 #include "core/progress.hpp"
+#include "core/state_registry.hpp"
 #include "dynamics/integrator.hpp"
-#include "io/checkpoint.hpp"
-#include "io/run_io.hpp"
+#include "dynamics/runaway.hpp"
 #include "mesh/node_mesh.hpp"
 #include "rubber/crack.hpp"
 #include "rubber/crack_drive.hpp"
 #include "rubber/model.hpp"
 #include "rubber/setup.hpp"
+#include "run/driver.hpp"
+#include "run/engine.hpp"
 
 namespace frac::rubber {
 
@@ -57,12 +62,77 @@ struct RubberSummary {
   std::size_t nodes = 0;
   int checkpoints = 0;            // written by this process
   double checkpoint_seconds = 0;  // wall time spent writing them
+  std::vector<PhaseTime> phases;  // the time of each phase of the steps (core/phases)
 };
 
 
-// Runs to the stop rule. `writer` may be null (tests, benchmarks). With checkpoints, one is written when due and
-// when a stop signal arrives (then Interrupted is thrown).
-RubberSummary run_rubber(RubberSystem& system, const RubberSetup& setup, io::RunWriter* writer, Progress& progress,
-                         const io::Continuation& continuation = {});
+// Least-squares slope of (t, x) over a ring buffer, in a fixed order: the crack tip's speed.
+struct SpeedFit {
+  std::vector<double> t, x;
+  std::size_t head = 0, count = 0;
+  explicit SpeedFit(std::size_t capacity) : t(std::max<std::size_t>(capacity, 2)), x(t.size()) {}
+  void add(double tt, double xx);
+  double slope() const;
+};
+
+// A rubber run as an engine of the run driver (run/engine): the lattice's step, then its events (bonds past
+// u_c, irreversible breaks), the driven seed's knife and the toughening of the crack faces; the observables
+// (energies, the crack tip and its speed) and frame datasets as tables; the stop rule (t_max, max_steps, the tip
+// near the far edge) and the output plan.
+class RubberRun final : public run::Engine {
+ public:
+  RubberRun(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh);
+  RubberRun(const RubberRun&) = delete;  // (its tables and state call it where it is)
+  RubberRun& operator=(const RubberRun&) = delete;
+
+  void start() override;
+  const dynamics::Integrator& integrator() const override { return *integ_; }
+  Phases step_phases() override { return integ_->step_phases(model_); }
+  void bind_step() override { integ_->begin_step(model_); }
+  std::size_t team_size() const override { return integ_->team_for(model_); }
+  void after_step(std::int64_t step, std::vector<run::Event>& events) override;
+  std::string stop_reason(std::int64_t step) const override;
+  bool frame_due() const override { return integ_->t() >= next_frame_ - 0.5 * setup_.dt; }
+  void frame_written() override { next_frame_ += setup_.scene.frame_interval; }
+  bool observe_due(std::int64_t step, bool frame) const override {
+    return step % setup_.scene.observe_every == 0 || frame;
+  }
+  void measure(std::int64_t step) override;
+  const std::vector<run::Observable>& observables() const override { return observables_; }
+  const std::vector<run::FrameDataset>& frame_datasets() const override { return frames_; }
+  run::RunBodies bodies() const override;
+  const StateRegistry& state() const override { return state_; }
+  std::string progress_line(std::int64_t step, std::int64_t first_step, double first_t,
+                            double elapsed) const override;
+
+  // The run's summary, from the driver's outcome.
+  RubberSummary summary(const run::Outcome& outcome) const;
+
+ private:
+  void declare_state();
+  void make_observables();
+  void make_frames();
+  RubberSystem& sys_;
+  const RubberSetup& setup_;
+  const mesh::NodeMesh& mesh_;
+  Model& model_;
+  std::unique_ptr<dynamics::Integrator> integ_;
+  std::optional<dynamics::RunawayGuard> runaway_;
+  RubberSummary sum_;
+  CrackPath::Tip tip_;
+  SpeedFit fit_;
+  double next_frame_;
+  bool tip_stop_ = false;  // the last observation found the tip past stop.tip_margin
+  Model::Energy energy_;
+  double kinetic_ = 0;
+  std::vector<std::size_t> events_;
+  StateRegistry state_;
+  std::vector<run::Observable> observables_;
+  std::vector<run::FrameDataset> frames_;
+};
+
+// Runs to the stop rule, without output (tests, benchmarks).
+RubberSummary run_rubber(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh,
+                         Progress& progress);
 
 }  // namespace frac::rubber

@@ -6,11 +6,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "io/checkpoint.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
-#include "io/output_file.hpp"
-#include "io/run_io.hpp"
+#include "run/run_file.hpp"
 
 namespace frac::rubber {
 
@@ -25,25 +23,12 @@ RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const 
                           const Scene& scene, ToolRun run, const io::Group& input, const std::string& output,
                           const CheckpointOptions& checkpoint, Progress& progress) {
   for (auto& d : setup.derived()) run.parameters.push_back(std::move(d));
-  io::add_input(run, input);
-  io::RunCheckpoints checkpoints(checkpoint, output, run, [&](const std::string& m) { progress.note(m); });
-  io::OutputFile out(output);
-  io::write_header(out.root(), "run", run, out.uuid());
-  out.root().group("parameters/rubber-run").write_strings("scene_text", {scene.source_text()});
-  const std::vector<double> mass(mesh.nodes(), setup.node_mass);
-  io::RunWriter writer(out.root(), mesh, mass);
-  const io::Continuation continuation = checkpoints.start(writer);
-  RubberSummary s = checkpoints.guard([&] {
-    RubberSummary r = run_rubber(system, setup, &writer, progress, continuation);
-    out.root().set_attr("steps", static_cast<std::int64_t>(r.steps));
-    out.root().set_attr("end_time", r.time);
-    out.root().set_attr("stop_reason", r.stop_reason);
-    out.commit();
-    return r;
-  });
-  s.checkpoints = checkpoints.written();
-  s.checkpoint_seconds = checkpoints.seconds();
-  checkpoints.finish();
+  RubberRun engine(system, setup, mesh);
+  const run::FileOutcome f = run::run_to_file(engine, "rubber-run", scene.source_text(), std::move(run), input,
+                                              output, checkpoint, progress);
+  RubberSummary s = engine.summary(f.run);
+  s.checkpoints = f.checkpoints;
+  s.checkpoint_seconds = f.checkpoint_seconds;
   return s;
 }
 

@@ -41,7 +41,7 @@ struct Outcome {
 Outcome run(Simulation& sim) {
   Progress quiet("test", true);
   Outcome o;
-  o.summary = sim.run(nullptr, quiet);
+  o.summary = sim.run(quiet);
   for (double x : sim.integrator->q()) o.finite = o.finite && std::isfinite(x);
   for (double x : sim.integrator->v()) o.finite = o.finite && std::isfinite(x);
   return o;

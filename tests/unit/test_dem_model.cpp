@@ -228,7 +228,7 @@ frac::dem::DemScene load_scene(const std::string& name, const std::vector<std::p
 frac::dem::RunSummary run(const CellMesh& mesh, const frac::dem::DemScene& scene) {
   frac::dem::Simulation sim(mesh, scene);
   frac::Progress progress("test", true);
-  return sim.run(nullptr, progress);
+  return sim.run(progress);
 }
 
 struct SceneCase {
@@ -346,7 +346,7 @@ TEST(DemModel, ImpactOnABlockTwiceAsLargeBreaksTheSameBeams) {
     const CellMesh mesh = frac::mesh::make_random_lattice(o);  // the simulation keeps a reference
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
-    const auto s = sim.run(nullptr, progress);
+    const auto s = sim.run(progress);
     EXPECT_GT(s.broken, 20) << "the impact should break beams";
     const auto flags = sim.model.beams().intact();
     intact.emplace_back(flags.begin(), flags.end());
@@ -500,7 +500,7 @@ double two_square_balance(bool friction, double gamma_dt, double* dt_out) {
   sim.v0[1] = -1.0;  // j toward i
   sim.v0[3] = 1.0;   // j sliding along i
   frac::Progress progress("test", true);
-  const auto r = sim.run(nullptr, progress);
+  const auto r = sim.run(progress);
   return r.energy_error / r.energy_scale;
 }
 
@@ -573,7 +573,7 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
     ASSERT_FALSE(scene.physics.friction);
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
-    const auto s = sim.run(nullptr, progress);
+    const auto s = sim.run(progress);
     EXPECT_EQ(sim.model.calls("friction"), 0);
     EXPECT_EQ(sim.model.calls("contact"), s.steps + 1);  // one evaluation per step + the start
     EXPECT_EQ(sim.model.calls("damping"), s.steps + 1);
@@ -583,7 +583,7 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
     const auto scene = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"physics.contacts", "off"}});
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
-    const auto s = sim.run(nullptr, progress);
+    const auto s = sim.run(progress);
     EXPECT_EQ(sim.model.calls("contact"), 0);
     EXPECT_EQ(sim.model.calls("damping"), 0);
     EXPECT_EQ(sim.model.calls("friction"), 0);
@@ -595,7 +595,7 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
         load_scene("explosion", {{"stop.t_max", "2e-4"}, {"physics.beams", "off"}, {"physics.breaking", "off"}});
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
-    sim.run(nullptr, progress);
+    sim.run(progress);
     EXPECT_EQ(sim.model.calls("beams"), 0);
   }
   // A switch that needs another is refused.
@@ -666,12 +666,12 @@ TEST(DemModel, BreakingWithUnreachableThresholdsEqualsBreakingOff) {
                                                     {"material.t_eps", "1e-9"}, {"material.t_theta_deg", "1e-9"}});
   frac::dem::Simulation sim(mesh, brittle_off);
   frac::Progress progress("test", true);
-  EXPECT_EQ(sim.run(nullptr, progress).broken, 0);
+  EXPECT_EQ(sim.run(progress).broken, 0);
   EXPECT_EQ(sim.model.beams().intact_count(), sim.model.beams().size());
   const auto brittle_on = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"material.t_eps", "1e-9"},
                                                    {"material.t_theta_deg", "1e-9"}});
   frac::dem::Simulation sim_on(mesh, brittle_on);
-  EXPECT_GT(sim_on.run(nullptr, progress).broken, 100);
+  EXPECT_GT(sim_on.run(progress).broken, 100);
 }
 
 // Beams on with E = 0 against beams off (breaking off in both): beam_stiffness gives α = β = δ = 0, so
@@ -797,7 +797,7 @@ TEST(DemModel, ExactStartMakesGear5FifthOrderOnTheSmoothProblem) {
     EXPECT_EQ(d.integrator.start, start == "exact" ? frac::dynamics::StartKind::exact : frac::dynamics::StartKind::zero);
     frac::dem::Simulation sim(mesh, d);
     frac::Progress progress("test", true);
-    const auto summary = sim.run(nullptr, progress);
+    const auto summary = sim.run(progress);
     EXPECT_EQ(summary.steps, n0 << level);
     if (evaluations) *evaluations = summary.start_evaluations;
     const auto q = sim.integrator->q();

@@ -22,12 +22,14 @@
 #include "dem/scene.hpp"
 #include "dem/simulation.hpp"
 #include "dynamics/runaway.hpp"
+#include "io/checkpoint.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 #include "io/run_io.hpp"
 #include "mesh/random_lattice.hpp"
 #include "mesh/triangular_lattice.hpp"
 #include "rubber/setup.hpp"
+#include "run/driver.hpp"
 
 namespace {
 
@@ -305,7 +307,8 @@ TEST(DemRun, AFrameIntervalBelowTheTimesResolutionTakesAFrameAStep) {
   io::write_header(out.root(), "run", start_run("test", "test"), out.uuid());
   io::RunWriter writer(out.root(), m, sim.model.bodies().mass, sim.model.bodies().inertia);
   Progress progress("test", true);
-  const dem::RunSummary s = sim.run(&writer, progress);
+  dem::DemRun engine = sim.engine();
+  const dem::RunSummary s = engine.summary(run::drive(engine, &writer, progress, io::Continuation{}));
   EXPECT_EQ(s.steps, 12);
   EXPECT_EQ(writer.frames(), 13u);
 }

@@ -41,7 +41,7 @@ Outcome run_crack(const std::string& law) {
   const RubberSetup setup = prepare_rubber(sc, mesh);
   RubberSystem sys = build_rubber(mesh, setup, 1, 1);
   frac::Progress progress("crack test", true);
-  const RubberSummary s = run_rubber(sys, setup, nullptr, progress);
+  const RubberSummary s = run_rubber(sys, setup, mesh, progress);
   return {(s.tip.reference_x - s.tip_start.reference_x) / 1e-3, s.tip_speed, setup.lattice_x.transverse,
           setup.lattice_x.longitudinal};
 }

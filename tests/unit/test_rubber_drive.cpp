@@ -62,7 +62,7 @@ TEST(RubberDrive, AKnifeThatCutsNothingChangesNothing) {
   EXPECT_GT(b.drive->scheduled(), 0u);
   EXPECT_GT(b.drive->cut_time(0), 1.0);
   Progress quiet("test", true);
-  const RubberSummary sa = run_rubber(a, off, nullptr, quiet), sb = run_rubber(b, idle, nullptr, quiet);
+  const RubberSummary sa = run_rubber(a, off, m, quiet), sb = run_rubber(b, idle, m, quiet);
   EXPECT_EQ(sb.driven, 0u);
   EXPECT_EQ(sb.drive_energy, 0);
   EXPECT_EQ(sa.steps, sb.steps);
@@ -96,7 +96,7 @@ TEST(RubberDrive, TheKnifeCutsTheCrossingBondsOnSchedule) {
   // Half way through the drive (t_max = 5e-4 s of 1e-3 s): the bonds whose time has come are gone, the
   // others (and every crossing bond beyond the drive) still there.
   Progress quiet("test", true);
-  const RubberSummary s = run_rubber(sys, su, nullptr, quiet);
+  const RubberSummary s = run_rubber(sys, su, m, quiet);
   std::size_t removed = 0;
   for (std::size_t k = 0; k < drive.scheduled(); ++k) {
     const auto status = sys.model->status(drive.bond(k));

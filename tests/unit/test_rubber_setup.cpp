@@ -201,7 +201,7 @@ std::pair<RubberSetup, RubberSummary> short_run(const std::string& extra) {
       setup_for(std::string(kStretch) + extra + "[boundary]\nclamp_columns = 2\n[output]\nobserve_every = 5\n", m);
   RubberSystem sys = build_rubber(m, su, 1, 1);
   Progress quiet("test", true);
-  RubberSummary s = run_rubber(sys, su, nullptr, quiet);
+  RubberSummary s = run_rubber(sys, su, m, quiet);
   return {std::move(su), std::move(s)};
 }
 
