@@ -5,6 +5,7 @@
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "core/progress.hpp"
 #include "core/scene_tool.hpp"
 #include "io/hdf5.hpp"
@@ -49,6 +50,8 @@ int main(int argc, char** argv) {
                                                         cli::scene_run("rubber-run", args, scene), in,
                                                         args.common.output, args.checkpoint, progress);
     progress.finish(rubber::summary_line(s, system, setup, mesh));
+    if (args.profile)
+      write_phase_table(std::cerr, "rubber-run: phases of " + std::to_string(s.steps) + " steps", s.phases);
     if (const auto warning = rubber::energy_warning(s, resolved); warning && !args.common.quiet)
       std::cerr << "rubber-run: warning: " << *warning << "\n";
     return kExitOk;

@@ -1,6 +1,8 @@
 #include "core/scene.hpp"
 
 #include <boost/program_options.hpp>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -172,6 +174,26 @@ std::string Scene::choice(std::string_view key, const std::string& fallback, con
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
   bad(key, x, "expected one of " + list);
+}
+
+std::vector<std::string> Scene::subset(std::string_view key, const std::vector<std::string>& choices) {
+  std::string all;
+  for (const auto& c : choices) all += (all.empty() ? "" : ", ") + c;
+  const std::string x = text(key, all);
+  std::vector<bool> chosen(choices.size(), false);
+  std::istringstream in(x);
+  for (std::string name; std::getline(in, name, ',');) {
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    const auto it = std::find(choices.begin(), choices.end(), name);
+    if (it == choices.end()) bad(key, x, "'" + name + "' is not one of " + all);
+    if (chosen[static_cast<std::size_t>(it - choices.begin())]) bad(key, x, "'" + name + "' is named twice");
+    chosen[static_cast<std::size_t>(it - choices.begin())] = true;
+  }
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < choices.size(); ++k)
+    if (chosen[k]) out.push_back(choices[k]);
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> Scene::resolved() const {

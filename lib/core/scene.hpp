@@ -39,6 +39,8 @@ class Scene {
   std::string text(std::string_view key, const std::string& fallback);
   // One of `choices`.
   std::string choice(std::string_view key, const std::string& fallback, const std::vector<std::string>& choices);
+  // Some of `choices`, comma-separated, each once, in the order of `choices` (default: all of them).
+  std::vector<std::string> subset(std::string_view key, const std::vector<std::string>& choices);
 
   // UsageError naming the scene unless `key` is given (in the file or as an override); `what` says what
   // it decides ("what the run does").

@@ -6,11 +6,41 @@ namespace frac::dem {
 
 const ContactLawTable& contact_law_table() {
   static const ContactLawTable table{
-      {"contact", [](const Material& m) { return contact_law(ElasticOverlap{m.grain_modulus * m.thickness}); }},
-      {"damping", [](const Material& m) { return contact_law(NormalDamping{m.gamma_n}); }},
-      {"friction", [](const Material& m) { return contact_law(CoulombFriction{m.gamma_t, m.friction}); }},
+      {"contact", [](const Material& m) { return contact_law(ElasticOverlap{m.grain_modulus * m.thickness}); },
+       [](const Material&) { return std::array<double, 2>{}; }, true, false},
+      {"damping", [](const Material& m) { return contact_law(NormalDamping{m.gamma_n}); },
+       [](const Material& m) { return std::array<double, 2>{m.gamma_n, 0.0}; }},
+      {"friction", [](const Material& m) { return contact_law(CoulombFriction{m.gamma_t, m.friction}); },
+       [](const Material& m) { return std::array<double, 2>{0.0, m.gamma_t}; }},
   };
   return table;
+}
+
+std::vector<std::string> read_contact_laws(Scene& scene, const ContactLawTable& table, bool contacts) {
+  std::vector<std::string> on;
+  for (const ContactLawRow& row : table) {
+    const std::string key = "physics." + row.name;
+    if (!row.switched) {
+      if (contacts && row.default_on) on.push_back(row.name);
+      continue;
+    }
+    if (!scene.flag(key, row.default_on)) continue;
+    if (!contacts) scene.refuse(key, "a contact law: it needs physics.contacts = on");
+    on.push_back(row.name);
+  }
+  return on;
+}
+
+std::array<double, 2> dashpot_rates(const ContactLawTable& table, std::span<const std::string> names,
+                                    const Material& material) {
+  std::array<double, 2> rates{};
+  for (const ContactLawRow& row : table)
+    if (std::find(names.begin(), names.end(), row.name) != names.end()) {
+      const auto r = row.dashpot(material);
+      rates[0] += r[0];
+      rates[1] += r[1];
+    }
+  return rates;
 }
 
 ContactLaws make_contact_laws(const ContactLawTable& table, std::span<const std::string> names,

@@ -8,8 +8,10 @@
 //   contact   ElasticOverlap   F_n = −Y·h·A/L_c                          (negative: repulsive)
 //   damping   NormalDamping    F_n = m_eff·γ_N·v_n                       (v_n < 0 while approaching)
 //   friction  CoulombFriction  F_t = sign(v_t)·min(m_eff·γ_T·|v_t|, μ·|F_n|), F_n of the laws before it
-// A new law is one struct and one row of a table (contact_law_table() or a caller's own).
+// A new law is one struct and one row of a table (contact_law_table() or a caller's own): a scene switches it on
+// by its row's key (physics.<name> = on), and the row gives the dashpot rates it adds to the stable time step.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/scene.hpp"
 #include "dem/bodies.hpp"
 #include "dem/contact_list.hpp"
 #include "dem/material.hpp"
@@ -88,15 +91,25 @@ std::unique_ptr<ContactLaw> contact_law(Law law) {
   return std::make_unique<ContactLawLoop<Law>>(law);
 }
 
-// A row of a table of laws: the name a scene (Physics::contact_laws) and the energy ledger use, and the law
-// built from the material.
+// A row of a table of laws: the name the scene's switch (physics.<name>) and the energy ledger use; whether it is
+// on by default (the elastic overlap: on whenever contacts are, and no switch of its own); the law built from the
+// material; and the viscous rates it adds along the normal and the tangent (s^-1), which bound the time step.
 struct ContactLawRow {
   std::string name;
   std::function<std::unique_ptr<ContactLaw>(const Material&)> make;
+  std::function<std::array<double, 2>(const Material&)> dashpot = [](const Material&) { return std::array<double, 2>{}; };
+  bool default_on = false;
+  bool switched = true;  // false: on with the contacts (physics.contacts), no key of its own
 };
 using ContactLawTable = std::vector<ContactLawRow>;
 // The laws of the paper: contact, damping, friction.
 const ContactLawTable& contact_law_table();
+// The laws a scene switches on ([physics]: physics.contacts, then each row's physics.<name>), in the table's order;
+// UsageError naming the key of a law switched on without contacts.
+std::vector<std::string> read_contact_laws(Scene& scene, const ContactLawTable& table, bool contacts);
+// The viscous rates (normal, tangential) the laws `names` of `table` add up to, s^-1.
+std::array<double, 2> dashpot_rates(const ContactLawTable& table, std::span<const std::string> names,
+                                    const Material& material);
 
 // A scene's laws, in the table's order, with their names.
 struct ContactLaws {

@@ -134,11 +134,121 @@ double LoadingProbe::lateral_strain(std::span<const double> q, std::size_t n) co
   return (mean(right, x) - mean(left, x)) / width0 - 1.0;
 }
 
-LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, Model& model, std::span<double> v0) {
+namespace {
+
+// The uniaxial and the confined compression tests: the top and bottom layers move apart (tension) or together,
+// the confined test's also held in x and in angle; the side columns measure the lateral strain.
+LoadingSetup boundary_layers(const Loading& loading, const mesh::CellMesh& mesh, Model& model, double depth,
+                             bool confined) {
   LoadingSetup setup;
   const std::size_t n = mesh.cells();
-  const Bodies& bodies = model.bodies();
-  const double g = bodies.length_scale;
+  const auto& b = mesh.bounds;
+  LoadingProbe& p = setup.probe;
+  p.active = true;
+  p.thickness = model.material().thickness;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2& c = mesh.centroid[k];
+    if (c.y() > b[3] - depth) p.top.push_back(k);
+    else if (c.y() < b[1] + depth) p.bottom.push_back(k);
+    if (c.x() > b[2] - depth) p.right.push_back(k);
+    if (c.x() < b[0] + depth) p.left.push_back(k);
+  }
+  if (p.top.empty() || p.bottom.empty() || p.left.empty() || p.right.empty())
+    throw InputError("loading.kind = " + loading.name + ": the mesh has no boundary layer within " +
+                     std::to_string(depth) + " m of an edge");
+  std::vector<double> cx(n), cy(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    cx[k] = mesh.centroid[k].x();
+    cy[k] = mesh.centroid[k].y();
+  }
+  p.length0 = mean(p.top, cy.data()) - mean(p.bottom, cy.data());
+  p.width0 = mean(p.right, cx.data()) - mean(p.left, cx.data());
+  const double sign = loading.tension ? 1.0 : -1.0;
+  const int up = model.add_layer({sign * loading.boundary_speed, loading.ramp});
+  const int down = model.add_layer({-sign * loading.boundary_speed, loading.ramp});
+  const int fixed = model.add_layer({0.0, loading.ramp});
+  for (auto [cells, layer] : {std::pair{&p.top, up}, std::pair{&p.bottom, down}}) {
+    for (std::size_t k : *cells) {
+      model.add_prescribed(n + k, cy[k], layer);
+      if (confined) {
+        model.add_prescribed(k, cx[k], fixed);
+        model.add_prescribed(2 * n + k, 0.0, fixed);
+      }
+    }
+  }
+  return setup;
+}
+
+// The keys of the layer tests; `direction` their default direction.
+void read_layers(Scene& s, Loading& l, const std::string& direction) {
+  l.tension = s.choice("loading.direction", direction, {"tension", "compression"}) == "tension";
+  l.boundary_speed = s.in("loading.boundary_speed", l.boundary_speed, Interval::open_closed(0, limits::kSpeed));
+  l.ramp = s.positive("loading.ramp", l.ramp);
+  l.layer_depth = s.non_negative("loading.layer_depth", l.layer_depth);
+}
+
+LoadingRow layer_row(const std::string& name, const std::string& direction, bool confined) {
+  return {name, [direction](Scene& s, Loading& l) { read_layers(s, l, direction); },
+          [confined](const Loading& l, const mesh::CellMesh& m, Model& model, std::span<double>, double depth) {
+            return boundary_layers(l, m, model, depth, confined);
+          },
+          [](const Loading&) { return std::string(); }};
+}
+
+LoadingRow kick_row(const std::string& name) {
+  return {name, [](Scene& s, Loading& l) { l.energy = s.positive("loading.energy", l.energy); },
+          [](const Loading& l, const mesh::CellMesh& m, Model& model, std::span<double> v0, double) {
+            return explosion_kick(l, m, model.bodies(), v0);
+          },
+          [](const Loading& l) { return "loading.energy = " + format_value(l.energy) + " J"; }};
+}
+
+LoadingRow impact_row() {
+  const auto read = [](Scene& s, Loading& l) {
+    l.impact_speed = s.in("loading.impact_speed", l.impact_speed, Interval::open_closed(0, limits::kSpeed));
+    l.impact_energy = s.non_negative("loading.impact_energy", l.impact_energy);
+    l.impact_width = s.non_negative("loading.impact_width", l.impact_width);
+    l.layer_depth = s.non_negative("loading.layer_depth", l.layer_depth);
+  };
+  const auto apply = [](const Loading& l, const mesh::CellMesh& m, Model& model, std::span<double> v0, double depth) {
+    const double width = m.bounds[2] - m.bounds[0];
+    if (!(l.impact_width <= width))
+      throw UsageError("loading.impact_width = " + format_value(l.impact_width) + " m: wider than the sample (" +
+                       format_value(width) + " m)");
+    return impact_kick(l, m, model.bodies(), v0, depth);
+  };
+  const auto source = [](const Loading& l) {
+    return l.impact_energy > 0 ? "loading.impact_energy = " + format_value(l.impact_energy) + " J"
+                               : "loading.impact_speed = " + format_value(l.impact_speed) + " m/s";
+  };
+  return {"impact", read, apply, source};
+}
+
+}  // namespace
+
+const std::vector<LoadingRow>& loading_table() {
+  static const std::vector<LoadingRow> table{
+      {"none", [](Scene&, Loading&) {},
+       [](const Loading&, const mesh::CellMesh&, Model&, std::span<double>, double) { return LoadingSetup{}; },
+       [](const Loading&) { return std::string(); }},
+      layer_row("uniaxial", "tension", false),
+      layer_row("confined-compression", "compression", true),
+      kick_row("explosion"),
+      impact_row(),
+      kick_row("pulse"),
+  };
+  return table;
+}
+
+const LoadingRow& loading_row(const std::string& name) {
+  for (const LoadingRow& row : loading_table())
+    if (row.name == name) return row;
+  throw std::out_of_range("no loading kind '" + name + "'");
+}
+
+LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, Model& model, std::span<double> v0) {
+  const std::size_t n = mesh.cells();
+  const double g = model.bodies().length_scale;
   const double depth = loading.layer_depth > 0 ? loading.layer_depth : g;
   const auto& b = mesh.bounds;
   const double width = b[2] - b[0], height = b[3] - b[1];
@@ -146,55 +256,8 @@ LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, M
     throw UsageError("loading.layer_depth = " + format_value(loading.layer_depth) +
                      " m: the boundary layers would meet (the sample is " + format_value(width) + " x " +
                      format_value(height) + " m)");
-  if (loading.kind == LoadingKind::impact && !(loading.impact_width <= width))
-    throw UsageError("loading.impact_width = " + format_value(loading.impact_width) +
-                     " m: wider than the sample (" + format_value(width) + " m)");
-  switch (loading.kind) {
-    case LoadingKind::none: break;
-    case LoadingKind::uniaxial:
-    case LoadingKind::confined_compression: {
-      LoadingProbe& p = setup.probe;
-      p.active = true;
-      p.thickness = model.material().thickness;
-      for (std::size_t k = 0; k < n; ++k) {
-        const Vec2& c = mesh.centroid[k];
-        if (c.y() > b[3] - depth) p.top.push_back(k);
-        else if (c.y() < b[1] + depth) p.bottom.push_back(k);
-        if (c.x() > b[2] - depth) p.right.push_back(k);
-        if (c.x() < b[0] + depth) p.left.push_back(k);
-      }
-      if (p.top.empty() || p.bottom.empty() || p.left.empty() || p.right.empty())
-        throw InputError("loading.kind = " + loading.name + ": the mesh has no boundary layer within " +
-                         std::to_string(depth) + " m of an edge");
-      const double* y0 = nullptr;
-      std::vector<double> cx(n), cy(n);
-      for (std::size_t k = 0; k < n; ++k) {
-        cx[k] = mesh.centroid[k].x();
-        cy[k] = mesh.centroid[k].y();
-      }
-      y0 = cy.data();
-      p.length0 = mean(p.top, y0) - mean(p.bottom, y0);
-      p.width0 = mean(p.right, cx.data()) - mean(p.left, cx.data());
-      const double sign = loading.tension ? 1.0 : -1.0;
-      const int up = model.add_layer({sign * loading.boundary_speed, loading.ramp});
-      const int down = model.add_layer({-sign * loading.boundary_speed, loading.ramp});
-      const int fixed = model.add_layer({0.0, loading.ramp});
-      const bool confined = loading.kind == LoadingKind::confined_compression;
-      for (auto [cells, layer] : {std::pair{&p.top, up}, std::pair{&p.bottom, down}}) {
-        for (std::size_t k : *cells) {
-          model.add_prescribed(n + k, cy[k], layer);
-          if (confined) {
-            model.add_prescribed(k, cx[k], fixed);
-            model.add_prescribed(2 * n + k, 0.0, fixed);
-          }
-        }
-      }
-      break;
-    }
-    case LoadingKind::explosion:
-    case LoadingKind::pulse: setup = explosion_kick(loading, mesh, bodies, v0); break;
-    case LoadingKind::impact: setup = impact_kick(loading, mesh, bodies, v0, depth); break;
-  }
+  const LoadingRow& row = loading_row(loading.name);
+  LoadingSetup setup = row.apply(loading, mesh, model, v0, depth);
   // An energy far beyond the sample's (a typo, a unit slip) kicks cells faster than any solid stays one.
   double fastest = 0;
   std::size_t cell = n;
@@ -202,15 +265,10 @@ LoadingSetup apply_loading(const Loading& loading, const mesh::CellMesh& mesh, M
     const double v = std::hypot(v0[k], v0[n + k]);
     if (!(v <= fastest)) fastest = v, cell = k;
   }
-  if (!(fastest <= limits::kSpeed)) {
-    const bool impact = loading.kind == LoadingKind::impact;
-    const char* key = !impact ? "loading.energy" : loading.impact_energy > 0 ? "loading.impact_energy" : "loading.impact_speed";
-    const double value = !impact ? loading.energy : loading.impact_energy > 0 ? loading.impact_energy : loading.impact_speed;
-    const char* unit = impact && loading.impact_energy <= 0 ? " m/s" : " J";
-    throw UsageError(std::string(key) + " = " + format_value(value) + unit + ": kicks cell " + std::to_string(cell) + " to " +
+  if (!(fastest <= limits::kSpeed))
+    throw UsageError(row.kick_source(loading) + ": kicks cell " + std::to_string(cell) + " to " +
                      format_value(fastest) + " m/s, above the " + format_value(limits::kSpeed) +
                      " m/s any solid of this model survives as one");
-  }
   return setup;
 }
 

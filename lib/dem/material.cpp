@@ -1,5 +1,6 @@
 #include "dem/material.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 #include "core/error.hpp"
@@ -23,27 +24,13 @@ Material read_material(Scene& s) {
   return m;
 }
 
-Physics read_physics(Scene& s) {
-  Physics p;
+void read_physics_switches(Scene& s, Physics& p) {
   p.contacts = s.flag("physics.contacts", p.contacts);
   p.beams = s.flag("physics.beams", p.beams);
   p.breaking = s.flag("physics.breaking", p.breaking);
-  p.friction = s.flag("physics.friction", p.friction);
-  p.damping = s.flag("physics.damping", p.damping);
   if (p.breaking && !p.beams) throw UsageError(s.name() + ": physics.breaking = on needs physics.beams = on");
-  if ((p.friction || p.damping) && !p.contacts)
-    throw UsageError(s.name() + ": physics.friction and physics.damping act on contacts: they need physics.contacts = on");
-  return p;
 }
 
-std::vector<std::string> Physics::contact_laws() const {
-  std::vector<std::string> names;
-  if (!contacts) return names;
-  names.push_back("contact");
-  if (damping) names.push_back("damping");
-  if (friction) names.push_back("friction");
-  names.insert(names.end(), more_contact_laws.begin(), more_contact_laws.end());
-  return names;
-}
+bool Physics::has(std::string_view law) const { return std::find(laws.begin(), laws.end(), law) != laws.end(); }
 
 }  // namespace frac::dem

@@ -2,6 +2,7 @@
 // Material and physics switches of a DEM scene (physics/polygon-dem.md §0, §7): Table 1 of Kun et al.
 // in SI as defaults, the 2D thickness h that turns areas into masses and moduli into stiffnesses.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -26,16 +27,16 @@ struct Physics {
   bool contacts = true;
   bool beams = true;
   bool breaking = true;
-  bool friction = false;
-  bool damping = false;
-  // Contact laws beyond the paper's, by the names of their rows in the model's table (dem/contact_laws).
-  std::vector<std::string> more_contact_laws;
-  // The contact laws on: "contact" (with contacts), "damping", "friction", then more_contact_laws.
-  std::vector<std::string> contact_laws() const;
+  // The contact laws on, by the names of their rows in the model's table (dem/contact_laws), in its order:
+  // "contact" with the contacts, then those a scene switches on (damping, friction ...).
+  std::vector<std::string> laws{"contact"};
+  std::vector<std::string> contact_laws() const { return contacts ? laws : std::vector<std::string>{}; }
+  bool has(std::string_view law) const;
 };
 
-// [material] and [physics] sections. UsageError naming the key for bad values.
+// The [material] section. UsageError naming the key for bad values.
 Material read_material(Scene& scene);
-Physics read_physics(Scene& scene);
+// The [physics] switches of the beams, the breaking and the contacts (the contact laws: dem/contact_laws).
+void read_physics_switches(Scene& scene, Physics& physics);
 
 }  // namespace frac::dem

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "dem/frames.hpp"
 
 namespace frac::dem {
 namespace {
@@ -193,33 +194,14 @@ void DemRun::make_observables() {
 
 void DemRun::make_frames() {
   const std::size_t n = model_.bodies().n, nb = model_.beams().size();
-  // Cell k's component `c` of q or v (x, y: interleaved; the angle alone).
-  const auto pairs = [this, n](bool velocity) {
-    return [this, n, velocity](std::span<double> out) {
-      const auto s = velocity ? integrator_.v() : integrator_.q();
-      for (std::size_t k = 0; k < n; ++k) {
-        out[2 * k] = s[k];
-        out[2 * k + 1] = s[n + k];
-      }
-    };
-  };
-  const auto turns = [this, n](bool velocity) {
-    return [this, n, velocity](std::span<double> out) {
-      const auto s = velocity ? integrator_.v() : integrator_.q();
-      std::copy(s.begin() + static_cast<std::ptrdiff_t>(2 * n), s.begin() + static_cast<std::ptrdiff_t>(3 * n), out.begin());
-    };
-  };
-  const std::string cells = "particles/cells", beams = "connectivity/beams/trajectory";
-  frames_.push_back({cells, "position", "m", n, 2, false, pairs(false), {}});
-  frames_.push_back({cells, "velocity", "m s-1", n, 2, false, pairs(true), {}});
-  frames_.push_back({cells, "angle", "rad", n, 1, false, turns(false), {}});
-  frames_.push_back({cells, "angular_velocity", "rad s-1", n, 1, false, turns(true), {}});
-  frames_.push_back({beams, "intact", "", nb, 1, true, {}, [this](std::span<std::uint8_t> out) {
-                       const auto intact = model_.beams().intact();
-                       std::copy(intact.begin(), intact.end(), out.begin());
-                     }});
-  frames_.push_back({beams, "strain", "1", nb, 1, false,
-                     [this](std::span<double> out) { model_.beams().strains(integrator_.q(), out); }, {}});
+  for (const FrameRow& row : frame_table()) {
+    if (std::find(scene_.output.frames.begin(), scene_.output.frames.end(), row.name) == scene_.output.frames.end())
+      continue;
+    run::FrameDataset d{row.group, row.name, row.unit, row.per_beam ? nb : n, row.components, row.flags, {}, {}};
+    if (row.flags) d.fill_flags = [this, &row](std::span<std::uint8_t> out) { row.fill_flags(model_, integrator_, out); };
+    else d.fill = [this, &row](std::span<double> out) { row.fill(model_, integrator_, out); };
+    frames_.push_back(std::move(d));
+  }
 }
 
 run::RunBodies DemRun::bodies() const {

@@ -2,41 +2,26 @@
 
 #include "core/error.hpp"
 #include "core/physical_limits.hpp"
+#include "dem/frames.hpp"
+#include "dem/loading.hpp"
 
 namespace frac::dem {
 
 void require_run_keys(const Scene& s) {
-  s.require("loading.kind", "what the run does: none, uniaxial, confined-compression, explosion, impact or pulse");
+  std::string kinds;
+  for (const LoadingRow& row : loading_table()) kinds += (kinds.empty() ? "" : ", ") + row.name;
+  s.require("loading.kind", "what the run does: " + kinds);
 }
 
-DemScene read_dem_scene(Scene& s) {
+DemScene read_dem_scene(Scene& s, const ContactLawTable& laws) {
   DemScene d;
   d.material = read_material(s);
-  d.physics = read_physics(s);
-  Loading& l = d.loading;
-  l.name = s.choice("loading.kind", "none",
-                    {"none", "uniaxial", "confined-compression", "explosion", "impact", "pulse"});
-  l.kind = l.name == "uniaxial"               ? LoadingKind::uniaxial
-           : l.name == "confined-compression" ? LoadingKind::confined_compression
-           : l.name == "explosion"            ? LoadingKind::explosion
-           : l.name == "impact"               ? LoadingKind::impact
-           : l.name == "pulse"                ? LoadingKind::pulse
-                                              : LoadingKind::none;
-  if (l.kind == LoadingKind::uniaxial || l.kind == LoadingKind::confined_compression) {
-    const std::string fallback = l.kind == LoadingKind::uniaxial ? "tension" : "compression";
-    l.tension = s.choice("loading.direction", fallback, {"tension", "compression"}) == "tension";
-    l.boundary_speed = s.in("loading.boundary_speed", l.boundary_speed, Interval::open_closed(0, limits::kSpeed));
-    l.ramp = s.positive("loading.ramp", l.ramp);
-    l.layer_depth = s.non_negative("loading.layer_depth", l.layer_depth);
-  }
-  if (l.kind == LoadingKind::explosion || l.kind == LoadingKind::pulse)
-    l.energy = s.positive("loading.energy", l.energy);
-  if (l.kind == LoadingKind::impact) {
-    l.impact_speed = s.in("loading.impact_speed", l.impact_speed, Interval::open_closed(0, limits::kSpeed));
-    l.impact_energy = s.non_negative("loading.impact_energy", l.impact_energy);
-    l.impact_width = s.non_negative("loading.impact_width", l.impact_width);
-    l.layer_depth = s.non_negative("loading.layer_depth", l.layer_depth);
-  }
+  read_physics_switches(s, d.physics);
+  d.physics.laws = read_contact_laws(s, laws, d.physics.contacts);
+  std::vector<std::string> kinds;
+  for (const LoadingRow& row : loading_table()) kinds.push_back(row.name);
+  d.loading.name = s.choice("loading.kind", "none", kinds);
+  loading_row(d.loading.name).read(s, d.loading);
   IntegratorSettings& in = d.integrator;
   in.kind = dynamics::parse_integrator_kind(s.text("integrator.kind", "gear5"), "integrator.kind");
   in.start = dynamics::parse_start_kind(s.choice("integrator.start", "zero", {"zero", "exact"}), "integrator.start");
@@ -53,6 +38,9 @@ DemScene read_dem_scene(Scene& s) {
   d.output.frame_interval = s.positive("output.frame_interval", d.output.frame_interval);
   d.output.observe_every = s.integer("output.observe_every", d.output.observe_every);
   if (d.output.observe_every <= 0) throw UsageError(s.name() + ": output.observe_every must be positive");
+  d.output.frames = s.subset("output.frames", frame_names());
+  if (d.output.frames.empty() || d.output.frames.front() != "position")
+    s.refuse("output.frames", "must name position: the readers of a run find its frames by it");
   return d;
 }
 

@@ -3,17 +3,17 @@
 // (physics/polygon-dem.md §8, DESIGN.md §4): material, physics switches, loading, integrator, stop
 // rule and output plan. Defaults are Table 1 of the paper in SI.
 #include <string>
+#include <vector>
 
 #include "core/scene.hpp"
+#include "dem/contact_laws.hpp"
 #include "dem/material.hpp"
 #include "dynamics/integrator.hpp"
 
 namespace frac::dem {
 
-enum class LoadingKind { none, uniaxial, confined_compression, explosion, impact, pulse };
-
+// The loading's parameters; its kind (`name`) is a row of dem/loading's table, which reads the keys it uses.
 struct Loading {
-  LoadingKind kind = LoadingKind::none;
   std::string name = "none";
   // uniaxial and confined-compression: boundary layers move apart (tension) or together (compression)
   // at `boundary_speed` each, reached by constant acceleration over `ramp`.
@@ -52,6 +52,7 @@ struct StopRule {
 struct OutputPlan {
   double frame_interval = 1e-4;  // s between trajectory frames (the final state is always a frame)
   long long observe_every = 10;  // steps between observable samples
+  std::vector<std::string> frames;  // the datasets of every frame (dem/frames' rows), position among them
 };
 
 struct DemScene {
@@ -64,8 +65,9 @@ struct DemScene {
 };
 
 // UsageError naming the key and its range for a value out of range (speeds, moduli, densities, rates
-// beyond core/physical_limits.hpp are refused as absurd).
-DemScene read_dem_scene(Scene& scene);
+// beyond core/physical_limits.hpp are refused as absurd). The contact laws a scene can switch on are the rows of
+// `laws`.
+DemScene read_dem_scene(Scene& scene, const ContactLawTable& laws = contact_law_table());
 // The keys a scene for a run must give itself: loading.kind (an empty or stray scene would run on
 // defaults alone, doing nothing).
 void require_run_keys(const Scene& scene);

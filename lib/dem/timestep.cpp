@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "dem/beam.hpp"
 #include "dem/bodies.hpp"
+#include "dem/contact_laws.hpp"
 
 namespace frac::dem {
 
@@ -53,8 +54,7 @@ std::vector<double> inverse_sqrt_masses(const Bodies& bodies) {
 }  // namespace
 
 double max_damping_rate(const mesh::CellMesh& mesh, const Material& material, const Physics& physics) {
-  const double gn = physics.damping ? material.gamma_n : 0.0;
-  const double gt = physics.friction ? material.gamma_t : 0.0;
+  const auto [gn, gt] = dashpot_rates(contact_law_table(), physics.laws, material);
   if (!physics.contacts || (gn == 0 && gt == 0) || mesh.beams() == 0) return 0.0;
   const Bodies bodies = make_bodies(mesh, material);
   const std::size_t n = bodies.n;

@@ -14,6 +14,7 @@
 #include "core/rng.hpp"
 #include "core/signals.hpp"
 #include "dynamics/runaway.hpp"
+#include "rubber/frames.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/three_body_residual.hpp"
 
@@ -305,30 +306,15 @@ void RubberRun::make_observables() {
 }
 
 void RubberRun::make_frames() {
-  const Lattice& L = model_.lattice();
-  const std::size_t n = L.n, mesh_bonds = L.bond_id.size();
-  const auto pairs = [this, n](bool velocity) {
-    return [this, n, velocity](std::span<double> out) {
-      const auto s = velocity ? integ_->v() : integ_->q();
-      for (std::size_t i = 0; i < n; ++i) {
-        out[2 * i] = s[i];
-        out[2 * i + 1] = s[n + i];
-      }
-    };
-  };
-  const std::string nodes = "particles/nodes", bonds = "connectivity/bonds/trajectory";
-  frames_.push_back({nodes, "position", "m", n, 2, false, pairs(false), {}});
-  frames_.push_back({nodes, "velocity", "m s-1", n, 2, false, pairs(true), {}});
-  frames_.push_back({bonds, "intact", "", mesh_bonds, 1, true, {}, [this, &L](std::span<std::uint8_t> out) {
-                       for (std::size_t k = 0; k < out.size(); ++k)
-                         out[k] = model_.holds(static_cast<std::size_t>(L.bond_id[k]), integ_->q()) ? 1 : 0;
-                     }});
-  frames_.push_back({bonds, "strain", "1", mesh_bonds, 1, false,
-                     [this, &L](std::span<double> out) {
-                       for (std::size_t k = 0; k < out.size(); ++k)
-                         out[k] = model_.bond_length(static_cast<std::size_t>(L.bond_id[k]), integ_->q()) / L.spacing - 1;
-                     },
-                     {}});
+  const std::vector<std::string>& chosen = setup_.scene.frames;
+  for (const FrameRow& row : frame_table()) {
+    if (std::find(chosen.begin(), chosen.end(), row.name) == chosen.end()) continue;
+    const std::size_t items = row.per_bond ? model_.lattice().bond_id.size() : model_.lattice().n;
+    run::FrameDataset d{row.group, row.name, row.unit, items, row.components, row.flags, {}, {}};
+    if (row.flags) d.fill_flags = [this, &row](std::span<std::uint8_t> out) { row.fill_flags(model_, *integ_, out); };
+    else d.fill = [this, &row](std::span<double> out) { row.fill(model_, *integ_, out); };
+    frames_.push_back(std::move(d));
+  }
 }
 
 run::RunBodies RubberRun::bodies() const {

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/physical_limits.hpp"
+#include "rubber/frames.hpp"
 
 namespace frac::rubber {
 namespace {
@@ -146,6 +147,9 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   r.frame_interval = s.non_negative("output.frame_interval", r.t_max / 20);
   r.observe_every = s.integer("output.observe_every", r.observe_every);
   if (r.observe_every <= 0) throw UsageError(s.name() + ": output.observe_every must be positive");
+  r.frames = s.subset("output.frames", frame_names());
+  if (r.frames.empty() || r.frames.front() != "position")
+    s.refuse("output.frames", "must name position: the readers of a run find its frames by it");
   r.speed_window = s.positive("output.speed_window", 20 * tau);
   return r;
 }

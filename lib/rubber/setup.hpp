@@ -69,6 +69,7 @@ struct RubberScene {
   // [output]
   double frame_interval = 0;  // s; 0: only the first and last frames
   long long observe_every = 20;
+  std::vector<std::string> frames;  // the datasets of every frame (rubber/frames' rows), position among them
   double speed_window = 0;  // s
   int threads = 1;          // not a scene key: --threads
 };

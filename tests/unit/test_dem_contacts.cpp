@@ -23,10 +23,12 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/rng.hpp"
+#include "core/scene.hpp"
 #include "dem/bodies.hpp"
 #include "dem/contact_laws.hpp"
 #include "dem/contact_search.hpp"
 #include "dem/model.hpp"
+#include "dem/scene.hpp"
 #include "dem/timestep.hpp"
 #include "dynamics/integrator.hpp"
 #include "geometry/overlap.hpp"
@@ -306,7 +308,8 @@ TEST(DemContacts, DampingAndFrictionAgainstTheNote) {
 }
 
 // A contact law that only this test knows: adhesion proportional to the overlap area, F_n = +k·A (pulling i
-// towards j). It joins the engine as one struct and one row of a table; nothing else changes.
+// towards j). It joins the engine as one struct and one row of a table, and a scene file switches it on by its
+// row's key; nothing else changes.
 struct Adhesion {
   double k;  // N/m^2
   frac::dem::LawForce operator()(const frac::dem::ContactState& s) const { return {k * s.area, 0.0}; }
@@ -317,17 +320,22 @@ TEST(DemContacts, ALawOfATestJoinsTheEngineAsOneStructAndOneRow) {
   frac::dem::ContactLawTable table = frac::dem::contact_law_table();
   table.push_back({"adhesion", [](const Material&) { return frac::dem::contact_law(Adhesion{kAdhesion}); }});
   const Case c = hand_cases()[0];
-  Material mat;
-  mat.gamma_n = 1e4;
   const CellMesh mesh = rectangles(c.sizes, {Vec2(0, 0), c.cj}, 0.01);
   const auto q = state({Vec2(0, 0), c.cj}, {0, 0});
   const std::vector<double> v{0.2, -0.3, 0.1, 0.4, 20, -10};
-  Physics ph;
-  ph.beams = ph.breaking = false;
-  ph.damping = true;
-  Model plain(mesh, mat, ph);
-  ph.more_contact_laws = {"adhesion"};
-  Model adhesive(mesh, mat, ph, table);
+  // The same scene file with and without the new law's switch.
+  const std::string text = "[material]\ngamma_n = 1e4\n[physics]\nbeams = off\nbreaking = off\ndamping = on\n";
+  frac::Scene plain_scene = frac::Scene::parse(text, "plain.ini");
+  frac::Scene adhesive_scene = frac::Scene::parse(text + "adhesion = on\n", "adhesive.ini");
+  const frac::dem::DemScene plain_dem = frac::dem::read_dem_scene(plain_scene, table);
+  const frac::dem::DemScene adhesive_dem = frac::dem::read_dem_scene(adhesive_scene, table);
+  const Material& mat = plain_dem.material;
+  Model plain(mesh, mat, plain_dem.physics, table);
+  Model adhesive(mesh, mat, adhesive_dem.physics, table);
+  // (The table the tools use has no such row: the key is unknown to their scenes.)
+  frac::Scene stray = frac::Scene::parse(text + "adhesion = on\n", "stray.ini");
+  frac::dem::read_dem_scene(stray);
+  EXPECT_THROW(stray.check_all_used(), frac::UsageError);
   EXPECT_EQ(adhesive.terms(), (std::vector<std::string>{"contact", "damping", "adhesion"}));
   std::vector<double> a(6);
   plain.accelerations(0, q, v, a);
@@ -344,8 +352,8 @@ TEST(DemContacts, ALawOfATestJoinsTheEngineAsOneStructAndOneRow) {
   EXPECT_NEAR(adhesive.law_power(2), f.dot(vi - vj), 1e-12 * f.norm() * (vi - vj).norm());
   EXPECT_EQ(adhesive.law_power(0), plain.law_power(0));
   EXPECT_EQ(adhesive.law_power(1), plain.law_power(1));
-  // A scene cannot name a law its table lacks.
-  EXPECT_THROW(Model(mesh, mat, ph), frac::UsageError);
+  // A model cannot take a law its table lacks.
+  EXPECT_THROW(Model(mesh, mat, adhesive_dem.physics), frac::UsageError);
 }
 
 TEST(DemContacts, DampingAddsToTheRepulsionWhileApproaching) {
@@ -598,7 +606,8 @@ TEST(DemContacts, PairInteractionsConserveMomentumOnRandomOverlaps) {
       mat.gamma_t = 5e3;
       mat.friction = 0.3;
       Physics ph;
-      ph.contacts = ph.beams = ph.damping = ph.friction = true;
+      ph.contacts = ph.beams = true;
+      ph.laws = {"contact", "damping", "friction"};
       ph.breaking = false;
       Model model(s.mesh, mat, ph);
       const double dt = frac::dem::choose_time_step(s.mesh, mat, ph, kind, 0, 0.3, false).dt;

@@ -488,8 +488,7 @@ double two_square_balance(bool friction, double gamma_dt, double* dt_out) {
   const CellMesh mesh = two_squares(s);
   frac::dem::DemScene sc;
   sc.physics.breaking = false;
-  sc.physics.damping = !friction;
-  sc.physics.friction = friction;
+  sc.physics.laws = {"contact", friction ? "friction" : "damping"};
   sc.material.friction = 10;  // viscous regime of the friction law: the Coulomb cap never acts
   sc.stop.t_max = 3e-4;
   sc.integrator.dt = 0;  // auto
@@ -570,7 +569,7 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
   const CellMesh mesh = disc_mesh(200, 9);
   {
     const auto scene = load_scene("explosion", with(kBusy, {{"stop.t_max", "2e-4"}}));  // friction off (file)
-    ASSERT_FALSE(scene.physics.friction);
+    ASSERT_FALSE(scene.physics.has("friction"));
     frac::dem::Simulation sim(mesh, scene);
     frac::Progress progress("test", true);
     const auto s = sim.run(progress);
@@ -849,7 +848,7 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
     Material mat;
     mat.gamma_n = 1000;
     Physics ph;
-    ph.damping = true;
+    ph.laws = {"contact", "damping"};
     // Squeezed by 1 % about the origin: neighbours overlap, so every contact term has work.
     auto q = reference_state(mesh);
     for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
@@ -900,7 +899,7 @@ struct SqueezedDisc {
     const std::size_t n = mesh.cells();
     mat.gamma_n = mat.gamma_t = 1000;
     mat.friction = 0.3;
-    ph.damping = ph.friction = true;
+    ph.laws = {"contact", "damping", "friction"};
     q = reference_state(mesh);
     for (std::size_t k = 0; k < 2 * n; ++k) q[k] *= 0.99;
     frac::Rng rng(seed);

@@ -1,0 +1,46 @@
+#include "rubber/frames.hpp"
+
+namespace frac::rubber {
+namespace {
+
+// x and y of every node, interleaved, from q or v.
+void pairs(std::span<const double> s, std::size_t n, std::span<double> out) {
+  for (std::size_t i = 0; i < n; ++i) {
+    out[2 * i] = s[i];
+    out[2 * i + 1] = s[n + i];
+  }
+}
+
+}  // namespace
+
+const std::vector<FrameRow>& frame_table() {
+  using In = const dynamics::Integrator&;
+  const std::string nodes = "particles/nodes", bonds = "connectivity/bonds/trajectory";
+  static const std::vector<FrameRow> table{
+      {"position", nodes, "m", false, 2, false,
+       [](const Model& m, In in, std::span<double> out) { pairs(in.q(), m.nodes(), out); }, {}},
+      {"velocity", nodes, "m s-1", false, 2, false,
+       [](const Model& m, In in, std::span<double> out) { pairs(in.v(), m.nodes(), out); }, {}},
+      {"intact", bonds, "", true, 1, true, {},
+       [](const Model& m, In in, std::span<std::uint8_t> out) {
+         const Lattice& L = m.lattice();
+         for (std::size_t k = 0; k < out.size(); ++k) out[k] = m.holds(static_cast<std::size_t>(L.bond_id[k]), in.q()) ? 1 : 0;
+       }},
+      {"strain", bonds, "1", true, 1, false,
+       [](const Model& m, In in, std::span<double> out) {
+         const Lattice& L = m.lattice();
+         for (std::size_t k = 0; k < out.size(); ++k)
+           out[k] = m.bond_length(static_cast<std::size_t>(L.bond_id[k]), in.q()) / L.spacing - 1;
+       },
+       {}},
+  };
+  return table;
+}
+
+std::vector<std::string> frame_names() {
+  std::vector<std::string> names;
+  for (const FrameRow& row : frame_table()) names.push_back(row.name);
+  return names;
+}
+
+}  // namespace frac::rubber
