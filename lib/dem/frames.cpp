@@ -44,10 +44,5 @@ const std::vector<FrameRow>& frame_table() {
   return table;
 }
 
-std::vector<std::string> frame_names() {
-  std::vector<std::string> names;
-  for (const FrameRow& row : frame_table()) names.push_back(row.name);
-  return names;
-}
 
 }  // namespace frac::dem

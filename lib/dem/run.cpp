@@ -193,15 +193,8 @@ void DemRun::make_observables() {
 }
 
 void DemRun::make_frames() {
-  const std::size_t n = model_.bodies().n, nb = model_.beams().size();
-  for (const FrameRow& row : frame_table()) {
-    if (std::find(scene_.output.frames.begin(), scene_.output.frames.end(), row.name) == scene_.output.frames.end())
-      continue;
-    run::FrameDataset d{row.group, row.name, row.unit, row.per_beam ? nb : n, row.components, row.flags, {}, {}};
-    if (row.flags) d.fill_flags = [this, &row](std::span<std::uint8_t> out) { row.fill_flags(model_, integrator_, out); };
-    else d.fill = [this, &row](std::span<double> out) { row.fill(model_, integrator_, out); };
-    frames_.push_back(std::move(d));
-  }
+  frames_ = run::frame_datasets(frame_table(), scene_.output.frames, model_, integrator_, model_.bodies().n,
+                                model_.beams().size());
 }
 
 run::RunBodies DemRun::bodies() const {

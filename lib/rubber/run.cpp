@@ -306,15 +306,8 @@ void RubberRun::make_observables() {
 }
 
 void RubberRun::make_frames() {
-  const std::vector<std::string>& chosen = setup_.scene.frames;
-  for (const FrameRow& row : frame_table()) {
-    if (std::find(chosen.begin(), chosen.end(), row.name) == chosen.end()) continue;
-    const std::size_t items = row.per_bond ? model_.lattice().bond_id.size() : model_.lattice().n;
-    run::FrameDataset d{row.group, row.name, row.unit, items, row.components, row.flags, {}, {}};
-    if (row.flags) d.fill_flags = [this, &row](std::span<std::uint8_t> out) { row.fill_flags(model_, *integ_, out); };
-    else d.fill = [this, &row](std::span<double> out) { row.fill(model_, *integ_, out); };
-    frames_.push_back(std::move(d));
-  }
+  frames_ = run::frame_datasets(frame_table(), setup_.scene.frames, model_, *integ_, model_.lattice().n,
+                                model_.lattice().bond_id.size());
 }
 
 run::RunBodies RubberRun::bodies() const {
