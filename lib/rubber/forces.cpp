@@ -248,10 +248,13 @@ inline void freeze_failing(ForceContext& c, const H& cut, const G& g, std::size_
 }
 
 template <class P, class H, class G, DampingKind K, class Wt>
-struct Passes {
-  static void bonds(ForceContext& c, std::size_t i0, std::size_t i1, int worker) {
-    const P& pair = *static_cast<const P*>(c.pair);
-    const H& cut = *static_cast<const H*>(c.cutoff_law);
+class Passes final : public ForcePasses {
+ public:
+  Passes(const P& pair, const H& cut, const G& angle) : pair_(pair), cut_(cut), angle_(angle) {}
+
+  void bonds(ForceContext& c, std::size_t i0, std::size_t i1, int worker) const override {
+    const P pair = pair_;  // local copies: no store of the loop can alias them
+    const H cut = cut_;
     const double* x = c.x;
     const double* y = c.y;
     const std::int32_t* nbr = c.nbr;
@@ -314,9 +317,9 @@ struct Passes {
     c.breaks[worker] += breaks;
   }
 
-  static void centres(ForceContext& c, std::size_t i0, std::size_t i1) {
-    const G& g = *static_cast<const G*>(c.angle);
-    const H& cut = *static_cast<const H*>(c.cutoff_law);
+  void centres(ForceContext& c, std::size_t i0, std::size_t i1) const override {
+    const G g = angle_;
+    const H cut = cut_;
     const bool freeze = c.freeze;
     Slots s;
     for (std::size_t i = i0; i < i1; ++i) {
@@ -327,7 +330,7 @@ struct Passes {
     }
   }
 
-  static void gather(ForceContext& c, std::size_t i0, std::size_t i1, int worker) {
+  void gather(ForceContext& c, std::size_t i0, std::size_t i1, int worker) const override {
     const double* D = c.D;
     const std::int32_t* nbr = c.nbr;
     int bad = 0;
@@ -363,9 +366,9 @@ struct Passes {
     c.nonfinite[worker] += bad;
   }
 
-  static void energy(ForceContext& c, std::size_t k0, std::size_t k1) {
-    const P& pair = *static_cast<const P*>(c.pair);
-    const G& g = *static_cast<const G*>(c.angle);
+  void energy(ForceContext& c, std::size_t k0, std::size_t k1) const override {
+    const P pair = pair_;  // local copies: no store of the loop can alias them
+    const G g = angle_;
     const std::size_t block = ForceContext::kEnergyBlock;
     Slots s;
     for (std::size_t k = k0; k < k1; ++k) {
@@ -400,6 +403,11 @@ struct Passes {
       c.block_energy[2 * k + 1] = et;
     }
   }
+
+ private:
+  P pair_;
+  H cut_;
+  G angle_;
 };
 
 }  // namespace
@@ -424,26 +432,20 @@ void virial_blocks(ForceContext& c, std::size_t k0, std::size_t k1) {
   }
 }
 
-ForcePasses select_passes(const BondLaw& law, DampingKind damping) {
+std::unique_ptr<const ForcePasses> select_passes(const BondLaw& law, DampingKind damping) {
   return std::visit(
-      [damping](const auto& p, const auto& h, const auto& g, const auto& w) -> ForcePasses {
+      [damping](const auto& p, const auto& h, const auto& g, const auto& w) -> std::unique_ptr<const ForcePasses> {
         using P = std::decay_t<decltype(p)>;
         using H = std::decay_t<decltype(h)>;
         using G = std::decay_t<decltype(g)>;
         using W = std::decay_t<decltype(w)>;
         switch (damping) {
-          case DampingKind::uniform: {
-            using T = Passes<P, H, G, DampingKind::uniform, W>;
-            return {&T::bonds, &T::centres, &T::gather, &T::energy};
-          }
-          case DampingKind::near_failure: {
-            using T = Passes<P, H, G, DampingKind::near_failure, W>;
-            return {&T::bonds, &T::centres, &T::gather, &T::energy};
-          }
-          default: {
-            using T = Passes<P, H, G, DampingKind::none, W>;
-            return {&T::bonds, &T::centres, &T::gather, &T::energy};
-          }
+          case DampingKind::uniform:
+            return std::make_unique<Passes<P, H, G, DampingKind::uniform, W>>(p, h, g);
+          case DampingKind::near_failure:
+            return std::make_unique<Passes<P, H, G, DampingKind::near_failure, W>>(p, h, g);
+          default:
+            return std::make_unique<Passes<P, H, G, DampingKind::none, W>>(p, h, g);
         }
       },
       law.pair, law.cutoff, law.angle, law.weight);

@@ -22,6 +22,7 @@
 // taken over fixed blocks of nodes and the block sums added in order, for the same reason.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "rubber/bond_law.hpp"
 
@@ -57,9 +58,6 @@ struct ForceContext {
   BondData* bond = nullptr;              // [3(n+1)]
   double* D = nullptr;                   // [12(n+1)] D(i,s) as (x, y)
 
-  const void* pair = nullptr;    // the evaluators (concrete types known to the instantiated passes)
-  const void* cutoff_law = nullptr;
-  const void* angle = nullptr;
   // The three-body residual (three_body_residual.hpp): c_st, 6 × 6, or nullptr (the paper's law).
   const double* residual = nullptr;
 
@@ -94,17 +92,19 @@ struct ForceContext {
 // block_energy as (xx, xy, yx, yy) per block.
 void virial_blocks(ForceContext& c, std::size_t k0, std::size_t k1);
 
-// The passes of one combination of laws, over a range of nodes [i0, i1); the model schedules them
-// (three passes over all nodes, or fused row by row so that the bond data and D stay in cache).
-struct ForcePasses {
-  void (*bonds)(ForceContext& c, std::size_t i0, std::size_t i1, int worker) = nullptr;
-  void (*centres)(ForceContext& c, std::size_t i0, std::size_t i1) = nullptr;
-  void (*gather)(ForceContext& c, std::size_t i0, std::size_t i1, int worker) = nullptr;
+// The passes of one combination of laws, over a range of nodes [i0, i1), with their evaluators; the model
+// schedules them (three passes over all nodes, or fused row by row so that the bond data and D stay in cache).
+class ForcePasses {
+ public:
+  virtual ~ForcePasses() = default;
+  virtual void bonds(ForceContext& c, std::size_t i0, std::size_t i1, int worker) const = 0;
+  virtual void centres(ForceContext& c, std::size_t i0, std::size_t i1) const = 0;
+  virtual void gather(ForceContext& c, std::size_t i0, std::size_t i1, int worker) const = 0;
   // After bonds (with track = false): pair energy Σ 2f over bonds and three-body energy Σ T_i of the
   // energy blocks [k0, k1), into block_energy.
-  void (*energy)(ForceContext& c, std::size_t k0, std::size_t k1) = nullptr;
+  virtual void energy(ForceContext& c, std::size_t k0, std::size_t k1) const = 0;
 };
 
-ForcePasses select_passes(const BondLaw& law, DampingKind damping);
+std::unique_ptr<const ForcePasses> select_passes(const BondLaw& law, DampingKind damping);
 
 }  // namespace frac::rubber

@@ -47,9 +47,6 @@ Model::Model(Lattice lattice, ModelOptions options)
   ctx_.bond = bond_.data();
   ctx_.D = D_.data();
   ctx_.block_energy = blocks_.data();
-  std::visit([this](const auto& law) { ctx_.pair = &law; }, options_.law.pair);
-  std::visit([this](const auto& law) { ctx_.cutoff_law = &law; }, options_.law.cutoff);
-  std::visit([this](const auto& law) { ctx_.angle = &law; }, options_.law.angle);
   if (!options_.residual.empty() && options_.residual.size() != 36)
     throw UsageError("three-body residual: 36 values (6 x 6 slots) expected");
   ctx_.residual = options_.residual.empty() ? nullptr : options_.residual.data();
@@ -87,7 +84,7 @@ Phase Model::bonds_phase() {
   return {"lattice: bonds", false,
           [this](std::size_t t, std::size_t nt) {
             const auto [i0, i1] = worker_range(lattice_.n, t, nt);
-            passes_.bonds(ctx_, i0, i1, static_cast<int>(t));
+            passes_->bonds(ctx_, i0, i1, static_cast<int>(t));
           },
           {}};
 }
@@ -96,7 +93,7 @@ Phase Model::centres_phase() {
   return {"lattice: centres", false,
           [this](std::size_t t, std::size_t nt) {
             const auto [i0, i1] = worker_range(lattice_.n, t, nt);
-            passes_.centres(ctx_, i0, i1);
+            passes_->centres(ctx_, i0, i1);
           },
           {}};
 }
@@ -113,16 +110,16 @@ void Model::make_phases() {
     evaluation_.add({"lattice: edge bonds", false,
                      [this, L](std::size_t t, std::size_t nt) {
                        const auto [r0, r1] = rows_of(t, nt);
-                       if (r1 > r0) passes_.bonds(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
+                       if (r1 > r0) passes_->bonds(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
                      },
                      {}});
     evaluation_.add({"lattice: rows", false,
                      [this, L](std::size_t t, std::size_t nt) {
                        const auto [r0, r1] = rows_of(t, nt);
                        for (std::size_t r = r0; r < r1; ++r) {
-                         if (r + 1 != r1) passes_.bonds(ctx_, r * L, (r + 1) * L, static_cast<int>(t));
-                         passes_.centres(ctx_, r * L, (r + 1) * L);
-                         if (r >= r0 + 2) passes_.gather(ctx_, (r - 1) * L, r * L, static_cast<int>(t));
+                         if (r + 1 != r1) passes_->bonds(ctx_, r * L, (r + 1) * L, static_cast<int>(t));
+                         passes_->centres(ctx_, r * L, (r + 1) * L);
+                         if (r >= r0 + 2) passes_->gather(ctx_, (r - 1) * L, r * L, static_cast<int>(t));
                        }
                      },
                      {}});
@@ -130,8 +127,8 @@ void Model::make_phases() {
                      [this, L](std::size_t t, std::size_t nt) {
                        const auto [r0, r1] = rows_of(t, nt);
                        if (r1 == r0) return;
-                       passes_.gather(ctx_, r0 * L, (r0 + 1) * L, static_cast<int>(t));
-                       if (r1 - 1 > r0) passes_.gather(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
+                       passes_->gather(ctx_, r0 * L, (r0 + 1) * L, static_cast<int>(t));
+                       if (r1 - 1 > r0) passes_->gather(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
                      },
                      {}});
   } else {
@@ -140,7 +137,7 @@ void Model::make_phases() {
     evaluation_.add({"lattice: gather", false,
                      [this](std::size_t t, std::size_t nt) {
                        const auto [i0, i1] = worker_range(lattice_.n, t, nt);
-                       passes_.gather(ctx_, i0, i1, static_cast<int>(t));
+                       passes_->gather(ctx_, i0, i1, static_cast<int>(t));
                      },
                      {}});
   }
@@ -160,7 +157,7 @@ void Model::make_phases() {
   energy_.add({"lattice: energy", false,
                [this, blocks_of](std::size_t t, std::size_t nt) {
                  const auto [k0, k1] = blocks_of(t, nt);
-                 passes_.energy(ctx_, k0, k1);
+                 passes_->energy(ctx_, k0, k1);
                },
                {}});
   virial_.add(bonds_phase());

@@ -143,7 +143,7 @@ class Model final : public dynamics::System {
   Lattice lattice_;
   ModelOptions options_;
   int threads_ = 1;
-  ForcePasses passes_;
+  std::unique_ptr<const ForcePasses> passes_;
   ForceContext ctx_;
   std::vector<std::uint8_t> status_, past_;
   std::vector<double> cutoff_, shift_;

@@ -20,9 +20,8 @@
 
 namespace frac::rubber {
 
-RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std::uint64_t seed, int threads) try {
+ModelOptions model_options(const RubberSetup& su, int threads) {
   const RubberScene& sc = su.scene;
-  RubberSystem sys;
   ModelOptions mo;
   mo.law = su.law;
   mo.node_mass = su.node_mass;
@@ -32,18 +31,16 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   mo.failure = sc.failure == "freeze" ? Failure::freeze : Failure::paper;
   mo.break_extra = sc.irreversible ? sc.break_widths * sc.cutoff_width : std::numeric_limits<double>::infinity();
   mo.threads = threads;
-  Lattice lattice = build_lattice(mesh, sc.periodic_x, sc.periodic_y);
-  if (sc.three_body_residual > 0) mo.residual = three_body_residual(su.law, lattice, su.F, sc.three_body_residual);
-  sys.model = std::make_unique<Model>(std::move(lattice), mo);
-  Model& model = *sys.model;
-  const Lattice& L = model.lattice();
-  const std::size_t n = L.n;
-  model.set_box(su.F);
-  sys.path = std::make_unique<CrackPath>(mesh, L);
+  return mo;
+}
 
-  // Homogeneous pre-stretch about the origin of the mesh: the sheet starts in equilibrium. With
-  // loading.ramp_time, it starts at λy = loading.ramp_from_y instead, moving at the homogeneous stretch rate
-  // (v_y = λ̇y r_y, so no wave starts from the grips), which the clamped rows keep until ramp_time.
+// Homogeneous pre-stretch about the origin of the mesh: the sheet starts in equilibrium. With
+// loading.ramp_time, it starts at λy = loading.ramp_from_y instead, moving at the homogeneous stretch rate
+// (v_y = λ̇y r_y, so no wave starts from the grips), which the clamped rows keep until ramp_time. Returns λ̇y.
+double pre_stretch(RubberSystem& sys, const RubberSetup& su) {
+  const RubberScene& sc = su.scene;
+  const Lattice& L = sys.model->lattice();
+  const std::size_t n = L.n;
   Eigen::Matrix2d F0 = su.F;
   const double rate_y = sc.ramp_time > 0 ? (sc.stretch_y - sc.ramp_from_y) / sc.ramp_time : 0.0;
   if (sc.ramp_time > 0) F0(1, 1) = sc.ramp_from_y;
@@ -54,8 +51,13 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
     sys.q0[n + i] = F0(1, 0) * L.rx[i] + F0(1, 1) * L.ry[i];
     sys.v0[n + i] = rate_y * L.ry[i];
   }
+  return rate_y;
+}
 
-  // The seed crack, along the mesh's crack line from the left edge; the bulk off the line tougher.
+// The seed crack, along the mesh's crack line from the left edge; the bulk off the line tougher; the drive.
+void seed_crack(RubberSystem& sys, const RubberSetup& su) {
+  const RubberScene& sc = su.scene;
+  Model& model = *sys.model;
   const double path_length = sys.path->x_max() - sys.path->x_min();
   if (sc.seed_length >= path_length && sc.seed_length > 0) {
     std::ostringstream msg;
@@ -67,23 +69,26 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   if (sc.path_cutoff_ratio != 1) sys.path->set_bulk_cutoff(model, sc.path_cutoff_ratio * sc.cutoff_length);
   if (sc.drive_speed > 0)
     sys.drive = std::make_unique<CrackDrive>(*sys.path, sc.seed_length, sc.drive_speed, sc.drive_length, su.F(0, 0));
+}
 
-  // A localized pulse: Gaussian displacement (standard deviation pulse.width) of the lines across the
-  // direction of propagation, along it (longitudinal) or across it (shear).
-  if (sc.pulse_amplitude > 0) {
-    const bool along_x = sc.pulse_direction == "x";
-    const auto& s = along_x ? L.rx : L.ry;
-    const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
-    const double s0 = *lo + sc.pulse_position * (*hi - *lo);
-    const bool disp_x = along_x == (sc.pulse_kind == "longitudinal");
-    for (std::size_t i = 0; i < n; ++i) {
-      const double z = (s[i] - s0) / sc.pulse_width;
-      const double u = sc.pulse_amplitude * std::exp(-0.5 * z * z);
-      sys.q0[disp_x ? i : n + i] += u;
-    }
+// A localized pulse: Gaussian displacement (standard deviation pulse.width) of the lines across the
+// direction of propagation, along it (longitudinal) or across it (shear).
+void add_pulse(std::vector<double>& q0, const Lattice& L, const RubberScene& sc) {
+  const std::size_t n = L.n;
+  const bool along_x = sc.pulse_direction == "x";
+  const auto& s = along_x ? L.rx : L.ry;
+  const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
+  const double s0 = *lo + sc.pulse_position * (*hi - *lo);
+  const bool disp_x = along_x == (sc.pulse_kind == "longitudinal");
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = (s[i] - s0) / sc.pulse_width;
+    const double u = sc.pulse_amplitude * std::exp(-0.5 * z * z);
+    q0[disp_x ? i : n + i] += u;
   }
+}
 
-  // Clamps: rows j < k and j >= ny - k (top and bottom), columns likewise (index = j nx + i).
+// Clamps: rows j < k and j >= ny - k (top and bottom), columns likewise (index = j nx + i).
+std::vector<std::size_t> clamped_nodes(const mesh::NodeMesh& mesh, const RubberScene& sc, std::size_t n) {
   std::vector<std::size_t> clamped;
   const auto nx = static_cast<std::size_t>(mesh.nx), ny = static_cast<std::size_t>(mesh.ny);
   const auto kr = static_cast<std::size_t>(sc.clamp_rows), kc = static_cast<std::size_t>(sc.clamp_columns);
@@ -91,41 +96,65 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   for (std::size_t j = 0; j < ny && (kr > 0 || kc > 0); ++j)
     for (std::size_t i = 0; i < nx; ++i)
       if (j < kr || j + kr >= ny || i < kc || i + kc >= nx) clamped.push_back(j * nx + i);
+  return clamped;
+}
+
+// Thermal noise: uniform velocities in [−noise, noise] with zero mean over the free nodes.
+void add_thermal_noise(std::vector<double>& v0, std::span<const std::size_t> clamped, std::size_t n,
+                       std::uint64_t seed, double noise) {
+  Rng rng(seed);
+  std::vector<std::uint8_t> fixed(n, 0);
+  for (std::size_t i : clamped) fixed[i] = 1;
+  std::size_t free = 0;
+  double mean[2] = {0, 0};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 2; ++c) {
+      const double v = rng.uniform(-noise, noise);
+      if (fixed[i]) continue;
+      v0[static_cast<std::size_t>(c) * n + i] += v;
+      mean[c] += v;
+    }
+  for (std::size_t i = 0; i < n; ++i) free += fixed[i] ? 0 : 1;
+  for (std::size_t i = 0; i < n && free > 0; ++i)
+    if (!fixed[i])
+      for (int c = 0; c < 2; ++c) v0[static_cast<std::size_t>(c) * n + i] -= mean[c] / static_cast<double>(free);
+}
+
+// Tip kick: the two nodes of the first intact bond ahead of the tip move apart in y.
+void kick_tip(RubberSystem& sys, double tip_kick) {
+  const Lattice& L = sys.model->lattice();
+  const std::size_t n = L.n;
+  const std::size_t k = sys.path->next_intact(*sys.model, sys.q0);
+  if (k < sys.path->size()) {
+    const std::size_t b = sys.path->bond(k), i = b / 3, j = L.bond_other(b);
+    const double yi = L.ry[i] > sys.path->line_y() ? 1.0 : -1.0;
+    sys.v0[n + i] += yi * tip_kick;
+    sys.v0[n + j] -= yi * tip_kick;
+  }
+}
+
+RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std::uint64_t seed, int threads) try {
+  const RubberScene& sc = su.scene;
+  RubberSystem sys;
+  ModelOptions mo = model_options(su, threads);
+  Lattice lattice = build_lattice(mesh, sc.periodic_x, sc.periodic_y);
+  if (sc.three_body_residual > 0) mo.residual = three_body_residual(su.law, lattice, su.F, sc.three_body_residual);
+  sys.model = std::make_unique<Model>(std::move(lattice), mo);
+  Model& model = *sys.model;
+  const Lattice& L = model.lattice();
+  const std::size_t n = L.n;
+  model.set_box(su.F);
+  sys.path = std::make_unique<CrackPath>(mesh, L);
+  const double rate_y = pre_stretch(sys, su);
+  seed_crack(sys, su);
+  if (sc.pulse_amplitude > 0) add_pulse(sys.q0, L, sc);
+  const std::vector<std::size_t> clamped = clamped_nodes(mesh, sc, n);
   if (!clamped.empty()) {
     if (sc.ramp_time > 0) model.clamp(clamped, sys.q0, sys.v0, sc.ramp_time);
     else model.clamp(clamped, sys.q0);
   }
-
-  // Thermal noise: uniform velocities with zero mean over the free nodes.
-  if (sc.noise > 0) {
-    Rng rng(seed);
-    std::vector<std::uint8_t> fixed(n, 0);
-    for (std::size_t i : clamped) fixed[i] = 1;
-    std::size_t free = 0;
-    double mean[2] = {0, 0};
-    for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < 2; ++c) {
-        const double v = rng.uniform(-sc.noise, sc.noise);
-        if (fixed[i]) continue;
-        sys.v0[static_cast<std::size_t>(c) * n + i] += v;
-        mean[c] += v;
-      }
-    for (std::size_t i = 0; i < n; ++i) free += fixed[i] ? 0 : 1;
-    for (std::size_t i = 0; i < n && free > 0; ++i)
-      if (!fixed[i])
-        for (int c = 0; c < 2; ++c) sys.v0[static_cast<std::size_t>(c) * n + i] -= mean[c] / static_cast<double>(free);
-  }
-
-  // Tip kick: the two nodes of the first intact bond ahead of the tip move apart in y.
-  if (sc.tip_kick > 0) {
-    const std::size_t k = sys.path->next_intact(model, sys.q0);
-    if (k < sys.path->size()) {
-      const std::size_t b = sys.path->bond(k), i = b / 3, j = L.bond_other(b);
-      const double yi = L.ry[i] > sys.path->line_y() ? 1.0 : -1.0;
-      sys.v0[n + i] += yi * sc.tip_kick;
-      sys.v0[n + j] -= yi * sc.tip_kick;
-    }
-  }
+  if (sc.noise > 0) add_thermal_noise(sys.v0, clamped, n, seed, sc.noise);
+  if (sc.tip_kick > 0) kick_tip(sys, sc.tip_kick);
   for (std::size_t i : clamped) {
     sys.v0[i] = 0;
     sys.v0[n + i] = rate_y * L.ry[i];

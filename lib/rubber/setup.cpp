@@ -31,25 +31,27 @@ std::string len(double x, double spacing) { return num(x, 5) + " m (" + num(x / 
 
 void require_run_keys(const Scene& s) { s.require("loading.kind", "what the run does: stretch or wave"); }
 
-RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
-  RubberScene r;
-  const double d = mesh.spacing;
-  if (!(d > 0)) throw InputError("the mesh has no lattice spacing");
-  using limits::kSpeed, limits::kStretch;
-  // The sheet's extent, for lengths that must fit on it.
+namespace {
+
+// The sheet's extent along x and its largest extent, for lengths that must fit on it.
+std::pair<double, double> sheet_length_and_size(const mesh::NodeMesh& mesh) {
   double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
   for (std::size_t i = 0; i < mesh.position.size(); ++i) {
     const auto& p = mesh.position[i];
     xmin = i ? std::min(xmin, p.x()) : p.x(), xmax = i ? std::max(xmax, p.x()) : p.x();
     ymin = i ? std::min(ymin, p.y()) : p.y(), ymax = i ? std::max(ymax, p.y()) : p.y();
   }
-  const double length = xmax - xmin, size = std::max(length, ymax - ymin);
-  const Interval on_sheet = Interval::closed(0, size), law_length = Interval::open_closed(0, 1e3 * d);
+  return {xmax - xmin, std::max(xmax - xmin, ymax - ymin)};
+}
+
+// material.* and law.*: the continuum constants and the bond law on lattice spacing d.
+void read_material_and_law(Scene& s, RubberScene& r, double d) {
+  using limits::kSpeed;
+  const Interval law_length = Interval::open_closed(0, 1e3 * d);
   r.density = s.in("material.density", r.density, Interval::open_closed(0, limits::kDensity));
   r.thickness = s.in("material.thickness", r.thickness, Interval::open_closed(0, limits::kThickness));
   r.a = s.in("material.a", r.a, Interval::open_closed(0, kSpeed * kSpeed));  // a = c^2
   r.b = s.in("material.b", r.b, Interval::closed(0, 1e3));
-  const double tau = d / std::sqrt(r.a);  // the natural time unit Δ/√a
 
   r.pair = s.choice("law.pair", r.pair, pair_law_names());
   r.cutoff = s.choice("law.cutoff", r.cutoff, cutoff_law_names());
@@ -67,6 +69,10 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
     throw UsageError(s.name() + ": law.cutoff_length = " + num(r.cutoff_length) + " m must exceed the spacing plus " +
                      "law.short_width (" + num(d + r.short_width) + " m)");
 
+}
+
+// physics.* switches and the damping, breaking and toughening they switch on; tau: the time unit Δ/√a.
+void read_physics(Scene& s, RubberScene& r, double d, double tau) {
   r.damping = s.flag("physics.damping", r.damping);
   r.irreversible = s.flag("physics.irreversible", r.irreversible);
   r.toughening = s.flag("physics.toughening", r.toughening);
@@ -85,6 +91,11 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   r.toughening_every = s.integer("toughening.every", r.toughening_every);
   if (r.toughening_every <= 0) throw UsageError(s.name() + ": toughening.every must be positive");
 
+}
+
+// loading.*, boundary.* and crack.*: what is done to the sheet of the given length along x.
+void read_loading(Scene& s, RubberScene& r, const mesh::NodeMesh& mesh, double length) {
+  using limits::kSpeed, limits::kStretch;
   r.kind = s.choice("loading.kind", r.kind, {"stretch", "wave"});
   r.stretch_x = s.in("loading.stretch_x", r.stretch_x, Interval::open_closed(0, kStretch));
   r.stretch_y = s.in("loading.stretch_y", r.stretch_y, Interval::open_closed(0, kStretch));
@@ -124,6 +135,12 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
     throw UsageError(s.name() + ": crack.drive_speed and crack.drive_length go together (both positive: the driven "
                      "seed; both 0: off)");
 
+}
+
+// pulse.*, initial.*, integrator.*, stop.* and output.*.
+void read_pulse_and_run(Scene& s, RubberScene& r, double d, double tau, double size) {
+  using limits::kSpeed;
+  const Interval on_sheet = Interval::closed(0, size);
   r.pulse_kind = s.choice("pulse.kind", r.pulse_kind, {"longitudinal", "shear"});
   r.pulse_direction = s.choice("pulse.direction", r.pulse_direction, {"x", "y"});
   r.pulse_amplitude = s.in("pulse.amplitude", r.kind == "wave" ? 0.01 * d : 0.0, on_sheet);
@@ -151,6 +168,20 @@ RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
   if (r.frames.empty() || r.frames.front() != "position")
     s.refuse("output.frames", "must name position: the readers of a run find its frames by it");
   r.speed_window = s.positive("output.speed_window", 20 * tau);
+}
+
+}  // namespace
+
+RubberScene read_rubber_scene(Scene& s, const mesh::NodeMesh& mesh) {
+  RubberScene r;
+  const double d = mesh.spacing;
+  if (!(d > 0)) throw InputError("the mesh has no lattice spacing");
+  const auto [length, size] = sheet_length_and_size(mesh);
+  read_material_and_law(s, r, d);
+  const double tau = d / std::sqrt(r.a);  // the natural time unit Δ/√a
+  read_physics(s, r, d, tau);
+  read_loading(s, r, mesh, length);
+  read_pulse_and_run(s, r, d, tau, size);
   return r;
 }
 
@@ -205,34 +236,15 @@ std::vector<std::string> far_field_warnings(const RubberSetup& su) {
   return w;
 }
 
-RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
-  RubberSetup su;
-  su.scene = sc;
-  su.spacing = mesh.spacing;
-  const double d = su.spacing;
-  su.rho = sc.density * sc.thickness;
-  su.node_mass = mr::node_mass(su.rho, d);
-  LawParams p;
-  p.spacing = d;
-  p.A = mr::lattice_A(su.node_mass, sc.a, d);
-  p.B = mr::lattice_B(su.node_mass, sc.a, sc.b, d);
-  p.short_width = sc.short_width;
-  p.cutoff = sc.cutoff_length;
-  p.cutoff_width = sc.cutoff_width;
-  su.law = make_bond_law(p, sc.pair, sc.cutoff, sc.angle, sc.three_body_weight);
-  su.F = Eigen::Matrix2d{{sc.stretch_x, 0}, {0, sc.stretch_y}};
-  const bool rows_x = mesh.rows_along != "y";
-  for (int f = 0; f < 3; ++f) {
-    const double th = (rows_x ? 0.0 : 30.0) + 60.0 * f;
-    su.family_angle[f] = th;
-    const double r = th * std::numbers::pi / 180;
-    su.family_length[f] = (su.F * Eigen::Vector2d(std::cos(r), std::sin(r))).norm() * d;
-  }
+namespace {
 
-  // Stability: the stiffest of three states a run meets: the stretched far field, the relaxed lattice
-  // (crack faces, free edges; branch 1 of f is stiff, ω ∝ √(Δ/u_s)), and bonds passing through the
-  // cut-off, where h'' ∝ 1/w² multiplies the large three-body energy (probed with the longest family at
-  // several points of the cut-off region; about 10 times the far field for a Fermi width of 0.05Δ).
+// Stability: the stiffest of three states a run meets: the stretched far field, the relaxed lattice
+// (crack faces, free edges; branch 1 of f is stiff, ω ∝ √(Δ/u_s)), and bonds passing through the
+// cut-off, where h'' ∝ 1/w² multiplies the large three-body energy (probed with the longest family at
+// several points of the cut-off region; about 10 times the far field for a Fermi width of 0.05Δ). Sets
+// omega_max, dt_bound and dt (the scene's, or safety · dt_bound).
+void find_time_step(RubberSetup& su, const LawParams& p, bool rows_x) {
+  const RubberScene& sc = su.scene;
   su.omega_far = omega_max(su.law, su.node_mass, su.F, rows_x);
   su.omega_relaxed = omega_max(su.law, su.node_mass, Eigen::Matrix2d::Identity(), rows_x);
   if (sc.cutoff != "none") {
@@ -265,12 +277,11 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
                      "the cut-off); lower it, use auto, "
                      "or insist with --integrator.allow_unstable on");
   }
+}
 
-  su.mr_x = mr::speeds_x(sc.stretch_x, sc.stretch_y, sc.a, sc.b);
-  su.mr_y = mr::speeds_y(sc.stretch_x, sc.stretch_y, sc.a, sc.b);
-  su.lattice_x = lattice_speeds(su.law, su.node_mass, sc.stretch_x, sc.stretch_y, 'x', rows_x);
-  su.lattice_y = lattice_speeds(su.law, su.node_mass, sc.stretch_x, sc.stretch_y, 'y', rows_x);
-  su.warnings = far_field_warnings(su);
+// The warnings of the failure law: energy jumps of irreversible breaking, the cohesive share of freezing.
+void append_failure_warnings(RubberSetup& su) {
+  const RubberScene& sc = su.scene;
   // An irreversibly broken bond leaves with its three-body terms, weighted by h where it is cut: cut
   // mid-cut-off, it takes that share of them at once and the energy jumps (2-4 % in the crack runs with
   // b = 0.02-0.25, a Fermi cut-off and 0.2 widths; docs/rubber-run.md).
@@ -298,6 +309,41 @@ RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
   if (sc.dt > su.dt_bound)
     su.warnings.push_back("integrator.dt = " + num(sc.dt) + " s is above the stability bound " + num(su.dt_bound) +
                           " s (allowed by integrator.allow_unstable)");
+}
+
+}  // namespace
+
+RubberSetup prepare_rubber(const RubberScene& sc, const mesh::NodeMesh& mesh) {
+  RubberSetup su;
+  su.scene = sc;
+  su.spacing = mesh.spacing;
+  const double d = su.spacing;
+  su.rho = sc.density * sc.thickness;
+  su.node_mass = mr::node_mass(su.rho, d);
+  LawParams p;
+  p.spacing = d;
+  p.A = mr::lattice_A(su.node_mass, sc.a, d);
+  p.B = mr::lattice_B(su.node_mass, sc.a, sc.b, d);
+  p.short_width = sc.short_width;
+  p.cutoff = sc.cutoff_length;
+  p.cutoff_width = sc.cutoff_width;
+  su.law = make_bond_law(p, sc.pair, sc.cutoff, sc.angle, sc.three_body_weight);
+  su.F = Eigen::Matrix2d{{sc.stretch_x, 0}, {0, sc.stretch_y}};
+  const bool rows_x = mesh.rows_along != "y";
+  for (int f = 0; f < 3; ++f) {
+    const double th = (rows_x ? 0.0 : 30.0) + 60.0 * f;
+    su.family_angle[f] = th;
+    const double r = th * std::numbers::pi / 180;
+    su.family_length[f] = (su.F * Eigen::Vector2d(std::cos(r), std::sin(r))).norm() * d;
+  }
+
+  find_time_step(su, p, rows_x);
+  su.mr_x = mr::speeds_x(sc.stretch_x, sc.stretch_y, sc.a, sc.b);
+  su.mr_y = mr::speeds_y(sc.stretch_x, sc.stretch_y, sc.a, sc.b);
+  su.lattice_x = lattice_speeds(su.law, su.node_mass, sc.stretch_x, sc.stretch_y, 'x', rows_x);
+  su.lattice_y = lattice_speeds(su.law, su.node_mass, sc.stretch_x, sc.stretch_y, 'y', rows_x);
+  su.warnings = far_field_warnings(su);
+  append_failure_warnings(su);
   return su;
 }
 
