@@ -11,7 +11,8 @@
 # are the paper's. Per run: wall and CPU ns per cell-step over the whole run, and per phase (before break-up:
 # until 10 % of the beams that break have broken; during: to 90 %; after), from dem-run's progress lines
 # (step and steps per second every 5 s); peak memory (max RSS; MB = 10^6 bytes) and per cell; then contacts and
-# broken beams per cell over time, from the run's observables. Configurations run interleaved, repeat by repeat.
+# broken beams per cell over time, from the run's observables; the share of the step's time of each phase of the
+# step (dem-run --profile). Configurations run interleaved, repeat by repeat.
 set -euo pipefail
 bin=${1:-build/tools}
 sizes=${SIZES:-"10000 100000"}
@@ -48,7 +49,7 @@ run_job() {
   ((cells >= 1000000)) && t_max=${T_MAX_LARGE:-5e-4}
   /usr/bin/time -f "%e %U %S %M" -o "$out/$scene-$cells-t$t.time" "$bin/dem-run" --threads "$t" \
     --scene "data/scenes/$scene.ini" "$m" --integrator.dt "$dt" --stop.t_max "$t_max" \
-    --stop.steps_without_breaking 0 --checkpoint-every 0 -o "$out/$scene-$cells-t$t.h5" 2>"$out/$scene-$cells-t$t.log"
+    --stop.steps_without_breaking 0 --checkpoint-every 0 --profile -o "$out/$scene-$cells-t$t.h5" 2>"$out/$scene-$cells-t$t.log"
   report_job "$scene" "$cells" "$t"
 }
 
@@ -137,3 +138,25 @@ for cells in $sizes; do
               printf "\n" }'
   done
 done
+
+echo
+echo "Share of the step's time by phase (dem-run --profile, the last run of each job; serial: one thread):"
+echo
+logs=()
+for cells in $sizes; do for scene in $scenes; do for t in $threads; do
+  [[ -f "$out/$scene-$cells-t$t.log" ]] && logs+=("$out/$scene-$cells-t$t.log")
+done; done; done
+((${#logs[@]} > 0)) && awk '
+  FNR == 1 { job = FILENAME; sub(/.*\//, "", job); sub(/\.log$/, "", job); jobs[++nj] = job; on = 0 }
+  /phases of [0-9]+ steps/ { on = 1; next }
+  on && /^  total / { serial[job] = $NF; on = 0; next }
+  on && / (parallel|serial) / { name = $0; sub(/^  /, "", name); sub(/ +(parallel|serial) .*/, "", name)
+    kind = $0; sub(/.* (parallel|serial) .*/, "", kind); k = ($0 ~ / serial /) ? " (serial)" : ""
+    if (!((name k) in seen)) { seen[name k] = 1; order[++np] = name k }
+    share[job, name k] = $(NF - 1) }
+  END { printf "| phase |"; for (j = 1; j <= nj; ++j) printf " %s |", jobs[j]; printf "\n|---|"
+        for (j = 1; j <= nj; ++j) printf "---|"; printf "\n"
+        for (p = 1; p <= np; ++p) { printf "| %s |", order[p]
+          for (j = 1; j <= nj; ++j) printf " %s |", ((jobs[j], order[p]) in share) ? share[jobs[j], order[p]] : "-"
+          printf "\n" }
+        printf "| outside parallel loops |"; for (j = 1; j <= nj; ++j) printf " %s |", serial[jobs[j]]; printf "\n" }' "${logs[@]}"

@@ -45,23 +45,14 @@ Line fit(const std::vector<std::array<double, 2>>& hx) {
 // straight across, below 90 for one that leans back from the crack line (a wedge opening behind the tip).
 double angle_to_line(const Line& l) { return std::isnan(l.s) ? kNaN : std::atan2(1.0, -l.s) * 180.0 / std::numbers::pi; }
 
-}  // namespace
-
-CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, double stretch_x, double stretch_y,
-                               std::size_t clamp_rows) {
-  if (m.rows_along != "x" || m.nx < 3 || m.ny < 2 * static_cast<std::int64_t>(clamp_rows) + 2)
-    throw InputError("crack shape: needs a triangular mesh with rows along x and free rows between the clamps (got " +
-                     std::to_string(m.nx) + " x " + std::to_string(m.ny) + ", rows along " + m.rows_along + ")");
-  const std::size_t n = m.nodes(), nx = static_cast<std::size_t>(m.nx), ny = static_cast<std::size_t>(m.ny);
-  if (f.position.size() != 2 * n || f.intact.size() != m.bonds() || f.strain.size() != m.bonds())
-    throw InputError("crack shape: the frame does not match the mesh (" + std::to_string(n) + " nodes, " +
-                     std::to_string(m.bonds()) + " bonds)");
-  CrackShape s;
-  s.time = f.time;
+// Broken bonds across the crack line (the tip: the farthest along it) and in the bulk, and the grip bonds
+// (clamped rows to free rows) behind the tip, counted once the tip is known.
+void count_broken_bonds(const mesh::NodeMesh& m, const io::BodyFrame& f, std::size_t clamp_rows, CrackShape& s) {
+  const std::size_t nx = static_cast<std::size_t>(m.nx), ny = static_cast<std::size_t>(m.ny);
   const double y0 = m.notch_y;
   auto row = [&](std::int64_t node) { return static_cast<std::size_t>(node) / nx; };
 
-  std::vector<std::size_t> grip;  // bonds from the clamped rows to the free rows, counted once the tip is known
+  std::vector<std::size_t> grip;
   for (std::size_t b = 0; b < m.bonds(); ++b) {
     const auto [i, j] = m.bond[b];
     const bool broken = f.intact[b] == 0;
@@ -91,7 +82,14 @@ CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, 
     ++s.grip_bonds;
     if (f.intact[b] == 0) ++s.grip_bonds_broken;
   }
+}
 
+// The opening front: in each row from the crack line halfway to the grips, the farthest node (with its two
+// neighbours) that has let go; straight lines through the rows above, below and both.
+void fit_front(const mesh::NodeMesh& m, const io::BodyFrame& f, double stretch_x, double stretch_y,
+               std::size_t clamp_rows, CrackShape& s) {
+  const std::size_t nx = static_cast<std::size_t>(m.nx), ny = static_cast<std::size_t>(m.ny);
+  const double y0 = m.notch_y;
   // A node has let go when it has moved more than a spacing from its place in the pre-stretched sheet: ahead
   // of a supersonic tip nothing has moved but the small waves of the seed's opening.
   auto moved = [&](std::size_t node) {
@@ -130,8 +128,26 @@ CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, 
   } else {
     s.front_rms = s.front_lag = kNaN;
   }
+}
+
+}  // namespace
+
+CrackShape measure_crack_shape(const mesh::NodeMesh& m, const io::BodyFrame& f, double stretch_x, double stretch_y,
+                               std::size_t clamp_rows) {
+  if (m.rows_along != "x" || m.nx < 3 || m.ny < 2 * static_cast<std::int64_t>(clamp_rows) + 2)
+    throw InputError("crack shape: needs a triangular mesh with rows along x and free rows between the clamps (got " +
+                     std::to_string(m.nx) + " x " + std::to_string(m.ny) + ", rows along " + m.rows_along + ")");
+  const std::size_t n = m.nodes(), nx = static_cast<std::size_t>(m.nx), ny = static_cast<std::size_t>(m.ny);
+  if (f.position.size() != 2 * n || f.intact.size() != m.bonds() || f.strain.size() != m.bonds())
+    throw InputError("crack shape: the frame does not match the mesh (" + std::to_string(n) + " nodes, " +
+                     std::to_string(m.bonds()) + " bonds)");
+  CrackShape s;
+  s.time = f.time;
+  count_broken_bonds(m, f, clamp_rows, s);
+  fit_front(m, f, stretch_x, stretch_y, clamp_rows, s);
 
   // Free nodes far beyond the outer rows, which the clamps hold at their pre-stretched height.
+  const double row_step = m.position[nx].y() - m.position[0].y();
   const double reach = 0.5 * static_cast<double>(ny - 2 * clamp_rows) * row_step;
   const double y_bottom = stretch_y * m.position[0].y() - reach;
   const double y_top = stretch_y * m.position[(ny - 1) * nx].y() + reach;

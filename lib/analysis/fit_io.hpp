@@ -4,12 +4,14 @@
 // Layout and keys: docs/powerlaw-fit.md.
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "analysis/powerlaw.hpp"
+#include "core/provenance.hpp"
 #include "io/hdf5.hpp"
 
 namespace frac::analysis {
@@ -57,6 +59,17 @@ std::int64_t fragments_min_cells(const io::Group& root);
 // is missing or standard input is empty.
 bool input_is_hdf5(const std::string& path);
 
+// How powerlaw-fit reads its inputs.
+struct InputOptions {
+  std::string format = "auto";  // auto (HDF5 when the input starts with its signature), hdf5 or text
+  std::string column = "mass";  // fragments files: mass or cell_count
+  bool fragments_options_given = false;  // --column or --min-cells given: text input is refused
+  std::function<std::int64_t(const io::Group&)> min_cells;  // a fragments file's --min-cells filter
+};
+// Reads every input (fragments files or text columns, each pooled once: DistinctInputs) into one sample,
+// recording the HDF5 inputs in `run`'s provenance.
+FitInput read_pooled_inputs(const std::vector<std::string>& inputs, const InputOptions& options, ToolRun& run);
+
 // Writes the /fit group (the header is the caller's: write_header(root, "fit", ...)).
 void write_fit(io::Group& root, const FitReport& report, const FitInput& input);
 // Reads a /fit group back: estimators (fit, bootstrap and goodness-of-fit numbers), comparisons, histogram
@@ -66,6 +79,10 @@ FitReport read_fit(const io::Group& root);
 // "key value" lines (docs/powerlaw-fit.md lists every key) after '#' lines: `provenance`
 // (frac::provenance_line) first, then what alpha means.
 void write_fit_text(std::ostream& out, const FitReport& report, const FitInput& input, const std::string& provenance);
+// Writes `path` ("-": standard output) whole: the key value lines of write_fit_text (text) or an HDF5 file of
+// kind "fit" (header and /fit) for `run`.
+void write_fit_file(const std::string& path, const FitReport& report, const FitInput& input, const ToolRun& run,
+                    bool text);
 // powerlaw-fit's inputs, each pooled once: pooling a file twice would count its values twice. UsageError naming
 // both arguments when two name one file (the same device and inode: a.h5 and ./a.h5, a link, '-' and the file
 // standard input reads) or two fragments files are copies of one (the same /provenance file_uuid).

@@ -103,23 +103,16 @@ void check_state(const CellState& s) {
   check_beams(s.beam, s.intact, n);
 }
 
-Fragments find_fragments(const CellState& s) try {
-  check_state(s);
+namespace {
+
+// Provisional ids in order of each fragment's smallest cell (cells visited in increasing index): fills
+// out.cell_fragment and out.total_mass, `label` (by root), each fragment's first cell and mass sum.
+void label_fragments(const CellState& s, UnionFind& uf, std::vector<std::int64_t>& label,
+                     std::vector<std::int64_t>& first, std::vector<Sum>& sum, Fragments& out) {
   const std::size_t n = s.mass.size();
-  const std::size_t b = s.intact.size();
-
-  UnionFind uf(n);
-  for (std::size_t k = 0; k < b; ++k)
-    if (s.intact[k]) uf.unite(s.beam[2 * k], s.beam[2 * k + 1]);
-
-  // Provisional ids in order of each fragment's smallest cell (cells visited in increasing index).
-  Fragments out;
   out.cell_fragment.resize(n);
-  std::vector<std::int64_t> label(n, -1);  // by root
   std::size_t roots = 0;
   for (std::size_t i = 0; i < n; ++i) roots += uf.find(static_cast<std::int64_t>(i)) == static_cast<std::int64_t>(i);
-  std::vector<std::int64_t> first;
-  std::vector<Sum> sum;
   first.reserve(roots);  // the loop below then never allocates
   sum.reserve(roots);
   Sum total;
@@ -135,9 +128,13 @@ Fragments find_fragments(const CellState& s) try {
     total.add(s.mass[i]);
   }
   out.total_mass = total.value();
+}
 
-  // Final ids: mass decreasing, ties by smallest cell, which is by provisional id (ids were given in
-  // increasing order of the smallest cell). Sorted as (mass, id) pairs: no indirection in the compares.
+// Final ids: mass decreasing, ties by smallest cell, which is by provisional id (ids were given in
+// increasing order of the smallest cell). Sorted as (mass, id) pairs: no indirection in the compares.
+// `rank` is reused storage (provisional id -> final id); `sum` is released once read.
+void order_by_mass(std::vector<Sum>& sum, const std::vector<std::int64_t>& first, std::vector<std::int64_t>& rank,
+                   Fragments& out) {
   const std::size_t f = first.size();
   struct Key {
     double mass;
@@ -148,7 +145,6 @@ Fragments find_fragments(const CellState& s) try {
   std::vector<Sum>().swap(sum);
   std::sort(order.begin(), order.end(),
             [](const Key& a, const Key& c) { return a.mass != c.mass ? a.mass > c.mass : a.id < c.id; });
-  std::vector<std::int64_t>& rank = label;  // reused: provisional id -> final id
   out.mass.resize(f);
   out.first_cell.resize(f);
   for (std::size_t j = 0; j < f; ++j) {
@@ -158,8 +154,13 @@ Fragments find_fragments(const CellState& s) try {
   }
   std::vector<Key>().swap(order);
   for (auto& id : out.cell_fragment) id = rank[id];
+}
 
-  // Centre of mass and its velocity: mass-weighted sums in increasing cell index.
+// Centre of mass and its velocity (mass-weighted sums in increasing cell index), translational kinetic
+// energy, and kinetic energy in each fragment's centre-of-mass frame.
+void add_motion(const CellState& s, Fragments& out) {
+  const std::size_t n = s.mass.size();
+  const std::size_t f = out.mass.size();
   out.cell_count.assign(f, 0);
   out.center_of_mass.assign(2 * f, 0.0);
   out.velocity.assign(2 * f, 0.0);
@@ -193,6 +194,26 @@ Fragments find_fragments(const CellState& s) try {
     const double w = s.angular_velocity[i];
     out.kinetic_energy_rotational[id] += 0.5 * (s.mass[i] * (dx * dx + dy * dy) + s.inertia[i] * w * w);
   }
+}
+
+}  // namespace
+
+Fragments find_fragments(const CellState& s) try {
+  check_state(s);
+  const std::size_t n = s.mass.size();
+  const std::size_t b = s.intact.size();
+
+  UnionFind uf(n);
+  for (std::size_t k = 0; k < b; ++k)
+    if (s.intact[k]) uf.unite(s.beam[2 * k], s.beam[2 * k + 1]);
+
+  Fragments out;
+  std::vector<std::int64_t> label(n, -1);  // by root
+  std::vector<std::int64_t> first;
+  std::vector<Sum> sum;
+  label_fragments(s, uf, label, first, sum, out);
+  order_by_mass(sum, first, label, out);
+  add_motion(s, out);
   return out;
 } catch (const std::bad_alloc&) {
   throw out_of_memory("the fragments of " + std::to_string(s.mass.size()) + " cells");

@@ -197,34 +197,38 @@ io::SpeedsRecord predict_speeds(const TheoryInputs& in) {
     throw UsageError("--direction: no prediction for " + (skipped.empty() ? std::string("these directions") : skipped[0]));
   return r;
 }
+namespace {
 
-io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::vector<std::string>& notes) {
-  const io::RunInfo info = io::read_run_info(run);
-  const bool rubber = info.model == "rubber";
-  const std::string tool = rubber ? "rubber-run" : "dem-run";
-  const Params params = run_parameters(run, tool);
-  const std::string from = "/parameters/" + tool;
-  const auto note_from = [&](const std::string& what, const Found& f) {
+// The run's recorded parameters, where they come from, and the notes saying which defaults were taken.
+struct RunDefaults {
+  const Params& params;
+  std::string from;  // "/parameters/<tool>"
+  std::vector<std::string>& notes;
+  void note(const std::string& what, const Found& f) const {
     notes.push_back(what + " from " + from + " " + f.key + " = " + f.value);
-  };
+  }
+};
 
-  // ---- defaults from the run ----
+// Mode, direction, source and near field of the run's own pulse, where the user left them unset.
+void apply_run_defaults(const io::Group& run, bool rubber, const RunDefaults& d, RunRequest& req) {
+  const Params& params = d.params;
+  const std::string& from = d.from;
   const auto kind = lookup(params, kKeyLoadingKind);
   const bool wave_scene = rubber && kind && kind->value == "wave";
   if (!req.modes_given && wave_scene) {
     if (const auto f = lookup(params, kKeyPulseMode)) {
       req.front.modes = {parse_wave_mode(f->value, from + " " + f->key)};
-      note_from("mode", *f);
+      d.note("mode", *f);
     }
   }
   std::optional<Found> pulse_direction = wave_scene ? lookup(params, kKeyPulseDirection) : std::nullopt;
   if (!req.directions_given) {
     if (pulse_direction) {
       req.front.directions = {parse_direction(pulse_direction->value, from + " " + pulse_direction->key)};
-      note_from("direction", *pulse_direction);
+      d.note("direction", *pulse_direction);
     } else if (!rubber && kind && (kind->value == "pulse" || kind->value == "explosion")) {
       req.front.directions = {kRadial};
-      note_from("direction radial (a point source)", *kind);
+      d.note("direction radial (a point source)", *kind);
     } else {
       req.front.directions = {0.0};
     }
@@ -240,14 +244,17 @@ io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::
       const int axis = pulse_direction->value == "y" ? 1 : 0;
       centre(axis) = lo(axis) + fraction * (hi(axis) - lo(axis));
       req.front.source_reference = centre;
-      note_from("source (mapped by the first frame's stretch)", *f);
+      d.note("source (mapped by the first frame's stretch)", *f);
     }
   }
   if (wave_scene && !std::isfinite(req.front.s_min))
     if (const auto f = lookup(params, kKeyPulseWidth)) req.front.near_field = kNearFieldWidths * to_number(*f, from);
+}
 
-  const WaveMeasurement m = measure_wave_speeds(run, req.front);
-
+// The measurement as a record (origin "run"). InputError when a mode the user asked for, or every front,
+// could not be timed; other failures become notes.
+io::SpeedsRecord measured_record(const io::Group& run, const WaveMeasurement& m, const RunRequest& req,
+                                 std::vector<std::string>& notes) {
   io::SpeedsRecord r;
   r.origin = "run";
   r.model = m.model;
@@ -293,74 +300,121 @@ io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::
   if (std::none_of(m.fronts.begin(), m.fronts.end(), [](const FrontMeasurement& f) { return f.ok; }))
     throw InputError(run.file() + ": no front could be timed" +
                      (m.fronts.empty() ? std::string(" (no signal in the distance range)") : ": " + m.fronts[0].failure));
+  return r;
+}
+
+// The Mooney-Rivlin inputs the user left unset, from the rubber run: material, density, lattice, stretch.
+void rubber_theory_inputs(const io::Group& run, const RunDefaults& d, const RunRequest& req, const WaveMeasurement& m,
+                          TheoryInputs& th) {
+  const Params& params = d.params;
+  const std::string& from = d.from;
+  const auto fill = [&](std::optional<double>& v, std::initializer_list<const char*> keys, const char* what) {
+    if (v) return;
+    if (const auto f = lookup(params, keys)) {
+      v = to_number(*f, from);
+      d.note(what, *f);
+    }
+  };
+  fill(th.a, kKeyA, "a");
+  fill(th.b, kKeyB, "b");
+  if (!th.density) {
+    if (const auto f = lookup(params, kKeyArealDensity)) {
+      th.density = to_number(*f, from);
+      d.note("areal density", *f);
+    } else if (const auto density = lookup(params, kKeyDensity), t = lookup(params, kKeyThickness); density && t) {
+      th.density = to_number(*density, from) * to_number(*t, from);
+      d.note("areal density = density x thickness", *density);
+    }
+  }
+  fill(th.short_width, kKeyShortWidth, "short-bond width u_s");
+  fill(th.cutoff, kKeyCutoff, "cut-off u_c");
+  fill(th.cutoff_width, kKeyCutoffWidth, "cut-off width");
+  if (const auto f = lookup(params, kKeyCutoffKind); f && f->value == "none" && !req.theory.cutoff_width)
+    th.cutoff_width = 0.0;  // h = 1: nothing stiffens the far field before u_c
+  if (!th.spacing && run.has_attr("spacing", "particles/nodes")) th.spacing = run.attr_double("spacing", "particles/nodes");
+  if (!th.rows_along && run.has_attr("rows_along", "particles/nodes"))
+    th.rows_along = run.attr_string("rows_along", "particles/nodes");
+  if (!th.stretch) {
+    if (const auto f = lookup(params, kKeyStretch)) {
+      const auto x = f->value.find_first_of("xX");
+      if (x != std::string::npos) {
+        th.stretch = Stretch{to_number({f->key, f->value.substr(0, x)}, from), to_number({f->key, f->value.substr(x + 1)}, from)};
+        d.note("stretch", *f);
+      }
+    }
+  }
+  if (!th.stretch) {
+    const auto fx = lookup(params, kKeyStretchX), fy = lookup(params, kKeyStretchY);
+    if (fx && fy) {
+      th.stretch = Stretch{to_number(*fx, from), to_number(*fy, from)};
+      d.note("stretch_x", *fx);
+      d.note("stretch_y", *fy);
+    }
+  }
+  if (!th.stretch) {
+    const auto& F = m.deformation;
+    th.stretch = Stretch{F(0, 0), F(1, 1)};
+    const double shear = std::max(std::abs(F(0, 1)), std::abs(F(1, 0)));
+    d.notes.push_back("stretch " + number(F(0, 0)) + "x" + number(F(1, 1)) +
+                      " from the first frame (least-squares deformation of the links)" +
+                      (shear > 1e-3 * std::max(F(0, 0), F(1, 1)) ? "; it is not diagonal (off-diagonal " +
+                                                                         number(shear) + "): give --stretch"
+                                                                   : ""));
+  }
+  if (th.theory.empty() && th.a && th.b) th.theory = "mooney-rivlin";
+}
+
+// The DEM's density, when the user left it unset; plane stress when K, nu and rho are all known.
+void dem_theory_inputs(const RunDefaults& d, TheoryInputs& th) {
+  if (!th.density)
+    if (const auto f = lookup(d.params, kKeyDensity)) {
+      th.density = to_number(*f, d.from);
+      d.note("density", *f);
+    }
+  if (th.theory.empty() && th.young && th.poisson && th.density) th.theory = "dem";
+}
+
+// Each measured speed against the prediction for its mode and direction, and (rubber) against the lattice's
+// own long-wave speed when the run derived it.
+void compare_speeds(io::SpeedsRecord& r, bool rubber, const RunDefaults& d) {
+  for (auto& x : r.measured) {
+    if (!x.ok) continue;
+    for (const auto& q : r.predicted) {
+      if (x.label != x.mode + "." + q.label) continue;
+      x.predicted = x.mode == "longitudinal" ? q.longitudinal : q.shear;
+      x.deviation = x.speed / x.predicted - 1;
+    }
+    // The lattice's own long-wave speed at the run's cut-off, when the run derived it (along x and y).
+    const std::string axis = direction_label(x.direction);
+    if (rubber && (axis == "x" || axis == "y" || axis == "-x" || axis == "-y")) {
+      const std::string key = std::string(kKeyLatticeSpeed) + (x.mode == "longitudinal" ? "L_" : "T_") + axis.back();
+      if (auto it = d.params.find(key); it != d.params.end()) {
+        x.lattice_predicted = to_number({key, it->second}, d.from);
+        x.lattice_deviation = x.speed / x.lattice_predicted - 1;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::vector<std::string>& notes) {
+  const io::RunInfo info = io::read_run_info(run);
+  const bool rubber = info.model == "rubber";
+  const std::string tool = rubber ? "rubber-run" : "dem-run";
+  const Params params = run_parameters(run, tool);
+  const RunDefaults d{params, "/parameters/" + tool, notes};
+
+  apply_run_defaults(run, rubber, d, req);
+  const WaveMeasurement m = measure_wave_speeds(run, req.front);
+  io::SpeedsRecord r = measured_record(run, m, req, notes);
 
   // ---- the prediction for the same material and stretch ----
   TheoryInputs th = req.theory;
   th.directions.clear();
   for (const auto& f : m.fronts) th.directions.push_back(f.direction);
-  if (rubber) {
-    const auto fill = [&](std::optional<double>& v, std::initializer_list<const char*> keys, const char* what) {
-      if (v) return;
-      if (const auto f = lookup(params, keys)) {
-        v = to_number(*f, from);
-        note_from(what, *f);
-      }
-    };
-    fill(th.a, kKeyA, "a");
-    fill(th.b, kKeyB, "b");
-    if (!th.density) {
-      if (const auto f = lookup(params, kKeyArealDensity)) {
-        th.density = to_number(*f, from);
-        note_from("areal density", *f);
-      } else if (const auto d = lookup(params, kKeyDensity), t = lookup(params, kKeyThickness); d && t) {
-        th.density = to_number(*d, from) * to_number(*t, from);
-        note_from("areal density = density x thickness", *d);
-      }
-    }
-    fill(th.short_width, kKeyShortWidth, "short-bond width u_s");
-    fill(th.cutoff, kKeyCutoff, "cut-off u_c");
-    fill(th.cutoff_width, kKeyCutoffWidth, "cut-off width");
-    if (const auto f = lookup(params, kKeyCutoffKind); f && f->value == "none" && !req.theory.cutoff_width)
-      th.cutoff_width = 0.0;  // h = 1: nothing stiffens the far field before u_c
-    if (!th.spacing && run.has_attr("spacing", "particles/nodes")) th.spacing = run.attr_double("spacing", "particles/nodes");
-    if (!th.rows_along && run.has_attr("rows_along", "particles/nodes"))
-      th.rows_along = run.attr_string("rows_along", "particles/nodes");
-    if (!th.stretch) {
-      if (const auto f = lookup(params, kKeyStretch)) {
-        const auto x = f->value.find_first_of("xX");
-        if (x != std::string::npos) {
-          th.stretch = Stretch{to_number({f->key, f->value.substr(0, x)}, from), to_number({f->key, f->value.substr(x + 1)}, from)};
-          note_from("stretch", *f);
-        }
-      }
-    }
-    if (!th.stretch) {
-      const auto fx = lookup(params, kKeyStretchX), fy = lookup(params, kKeyStretchY);
-      if (fx && fy) {
-        th.stretch = Stretch{to_number(*fx, from), to_number(*fy, from)};
-        note_from("stretch_x", *fx);
-        note_from("stretch_y", *fy);
-      }
-    }
-    if (!th.stretch) {
-      const auto& F = m.deformation;
-      th.stretch = Stretch{F(0, 0), F(1, 1)};
-      const double shear = std::max(std::abs(F(0, 1)), std::abs(F(1, 0)));
-      notes.push_back("stretch " + number(F(0, 0)) + "x" + number(F(1, 1)) +
-                      " from the first frame (least-squares deformation of the links)" +
-                      (shear > 1e-3 * std::max(F(0, 0), F(1, 1)) ? "; it is not diagonal (off-diagonal " +
-                                                                         number(shear) + "): give --stretch"
-                                                                   : ""));
-    }
-    if (th.theory.empty() && th.a && th.b) th.theory = "mooney-rivlin";
-  } else {
-    if (!th.density)
-      if (const auto f = lookup(params, kKeyDensity)) {
-        th.density = to_number(*f, from);
-        note_from("density", *f);
-      }
-    if (th.theory.empty() && th.young && th.poisson && th.density) th.theory = "dem";
-  }
+  if (rubber) rubber_theory_inputs(run, d, req, m, th);
+  else dem_theory_inputs(d, th);
 
   if (th.theory.empty()) {
     r.comparison = rubber ? "not compared: no prediction (give --a and --b, or a run that records material.a and material.b)"
@@ -388,23 +442,7 @@ io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::
     r.comparison = "not compared: " + r.lattice_message;
     return r;
   }
-  for (auto& x : r.measured) {
-    if (!x.ok) continue;
-    for (const auto& q : r.predicted) {
-      if (x.label != x.mode + "." + q.label) continue;
-      x.predicted = x.mode == "longitudinal" ? q.longitudinal : q.shear;
-      x.deviation = x.speed / x.predicted - 1;
-    }
-    // The lattice's own long-wave speed at the run's cut-off, when the run derived it (along x and y).
-    const std::string axis = direction_label(x.direction);
-    if (rubber && (axis == "x" || axis == "y" || axis == "-x" || axis == "-y")) {
-      const std::string key = std::string(kKeyLatticeSpeed) + (x.mode == "longitudinal" ? "L_" : "T_") + axis.back();
-      if (auto it = params.find(key); it != params.end()) {
-        x.lattice_predicted = to_number({key, it->second}, from);
-        x.lattice_deviation = x.speed / x.lattice_predicted - 1;
-      }
-    }
-  }
+  compare_speeds(r, rubber, d);
   r.comparison = r.lattice_regime == "unchecked" ? "compared (lattice not checked: " + r.lattice_message + ")" : "compared";
   return r;
 }

@@ -33,7 +33,8 @@ void Phases::run(std::size_t threads) {
   if (in_parallel()) {
     run_on_team(static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
   } else if (threads > 1 && !in_serial_section()) {
-#pragma omp parallel num_threads(static_cast<int>(threads))
+    const int team = static_cast<int>(threads);
+#pragma omp parallel num_threads(team)
     run_on_team(static_cast<std::size_t>(omp_get_thread_num()), static_cast<std::size_t>(omp_get_num_threads()));
   } else {
     run_on_team(0, 1);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/finite.hpp"
@@ -93,6 +94,74 @@ struct Collocation {
   }
 };
 
+// The monomial coefficients of the accelerations through the nodes: c[m·n + i] = Σ_j inverse[m][j]·a_j,i.
+void fit_accelerations(const Collocation& col, const std::vector<std::vector<double>>& a, std::size_t n,
+                       std::vector<double>& c) {
+  for (int m = 0; m < kNodes; ++m)
+    for (std::size_t i = 0; i < n; ++i) {
+      double sum = 0;
+      for (int j = 0; j < kNodes; ++j) sum += col.inverse[m][j] * a[j][i];
+      c[static_cast<std::size_t>(m) * n + i] = sum;
+    }
+}
+
+// One Picard pass: the positions and velocities at the nodes from the polynomial of the accelerations,
+// q(s) = q0 + tau·s·v0 + tau²·Σ c_m s^(m+2)/((m+1)(m+2)), v(s) = v0 + tau·Σ c_m s^(m+1)/(m+1).
+// Returns the largest change of a position and the largest excursion from q0.
+std::pair<double, double> integrate_at_nodes(const Collocation& col, std::span<const double> q0,
+                                             std::span<const double> v0, double tau, const std::vector<double>& c,
+                                             std::vector<std::vector<double>>& q, std::vector<std::vector<double>>& v) {
+  const std::size_t n = q0.size();
+  double change = 0, excursion = 0;
+  for (int j = 0; j < kNodes; ++j) {
+    const double s = col.s[j];
+    for (std::size_t i = 0; i < n; ++i) {
+      double u = 0, w = 0, p = s;  // p = s^(m+1)
+      for (int m = 0; m < kNodes; ++m, p *= s) {
+        const double cm = c[static_cast<std::size_t>(m) * n + i];
+        w += cm * p / (m + 1);
+        u += cm * p * s / ((m + 1) * (m + 2));
+      }
+      const double disp = tau * s * v0[i] + tau * tau * u;
+      const double qn = q0[i] + disp;
+      change = std::max(change, std::abs(qn - q[j][i]));
+      excursion = std::max(excursion, std::abs(disp));
+      q[j][i] = qn;
+      v[j][i] = v0[i] + tau * w;
+    }
+  }
+  return {change, excursion};
+}
+
+// The polynomial must resolve the motion: its two highest coefficients, relative to the largest, are
+// ~(ω·tau)^9/9! (1e-15 at ω·tau = 0.1). Far above, the iteration still settles but on a polynomial
+// that misses the derivatives.
+void require_resolved(const std::vector<double>& c, std::size_t n) {
+  double top = 0, all = 0;
+  for (int m = 0; m < kNodes; ++m)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = std::abs(c[static_cast<std::size_t>(m) * n + i]);
+      all = std::max(all, x);
+      if (m >= kNodes - 2) top = std::max(top, x);
+    }
+  if (top > 1e-8 * all)
+    throw RuntimeError("exact start: the time scale tau is too long for the fastest motion (the highest terms "
+                       "of the collocation polynomial are " + std::to_string(top / all) + " of its largest)");
+}
+
+// q0, v0 and d^(m+2)q/dt^(m+2) at s = 0, m!·c_m/tau^m, for m < 4.
+void derivatives_at_start(std::span<const double> q0, std::span<const double> v0, double tau,
+                          const std::vector<double>& c, std::vector<std::vector<double>>& derivs) {
+  const std::size_t n = q0.size();
+  derivs.assign(6, std::vector<double>(n));
+  std::copy(q0.begin(), q0.end(), derivs[0].begin());
+  std::copy(v0.begin(), v0.end(), derivs[1].begin());
+  const double scale[4] = {1.0, 1.0 / tau, 2.0 / (tau * tau), 6.0 / (tau * tau * tau)};
+  for (int m = 0; m < 4; ++m)
+    for (std::size_t i = 0; i < n; ++i)
+      derivs[static_cast<std::size_t>(m) + 2][i] = scale[m] * c[static_cast<std::size_t>(m) * n + i];
+}
+
 }  // namespace
 
 TaylorStart taylor_derivatives(System& system, double t0, std::span<const double> q0, std::span<const double> v0,
@@ -122,31 +191,8 @@ TaylorStart taylor_derivatives(System& system, double t0, std::span<const double
       system.prescribe(t, q[j], v[j], a[j]);
       ++out.evaluations;
     }
-    for (int m = 0; m < kNodes; ++m)
-      for (std::size_t i = 0; i < n; ++i) {
-        double sum = 0;
-        for (int j = 0; j < kNodes; ++j) sum += col.inverse[m][j] * a[j][i];
-        c[static_cast<std::size_t>(m) * n + i] = sum;
-      }
-    // q(s) = q0 + tau·s·v0 + tau²·Σ c_m s^(m+2)/((m+1)(m+2)), v(s) = v0 + tau·Σ c_m s^(m+1)/(m+1).
-    double change = 0, excursion = 0;
-    for (int j = 0; j < kNodes; ++j) {
-      const double s = col.s[j];
-      for (std::size_t i = 0; i < n; ++i) {
-        double u = 0, w = 0, p = s;  // p = s^(m+1)
-        for (int m = 0; m < kNodes; ++m, p *= s) {
-          const double cm = c[static_cast<std::size_t>(m) * n + i];
-          w += cm * p / (m + 1);
-          u += cm * p * s / ((m + 1) * (m + 2));
-        }
-        const double disp = tau * s * v0[i] + tau * tau * u;
-        const double qn = q0[i] + disp;
-        change = std::max(change, std::abs(qn - q[j][i]));
-        excursion = std::max(excursion, std::abs(disp));
-        q[j][i] = qn;
-        v[j][i] = v0[i] + tau * w;
-      }
-    }
+    fit_accelerations(col, a, n, c);
+    const auto [change, excursion] = integrate_at_nodes(col, q0, v0, tau, c, q, v);
     out.residual = excursion > 0 ? change / excursion : 0.0;
     if (change <= rounding) break;  // the points moved by no more than the rounding of the coordinates
     if (!std::isfinite(out.residual) || (out.iterations > 4 && out.residual > previous && out.residual > 1e-6) ||
@@ -161,27 +207,8 @@ TaylorStart taylor_derivatives(System& system, double t0, std::span<const double
     if (stalled >= 2) break;
     previous = out.residual;
   }
-  // The polynomial must resolve the motion: its two highest coefficients, relative to the largest, are
-  // ~(ω·tau)^9/9! (1e-15 at ω·tau = 0.1). Far above, the iteration still settles but on a polynomial
-  // that misses the derivatives.
-  double top = 0, all = 0;
-  for (int m = 0; m < kNodes; ++m)
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x = std::abs(c[static_cast<std::size_t>(m) * n + i]);
-      all = std::max(all, x);
-      if (m >= kNodes - 2) top = std::max(top, x);
-    }
-  if (top > 1e-8 * all)
-    throw RuntimeError("exact start: the time scale tau is too long for the fastest motion (the highest terms "
-                       "of the collocation polynomial are " + std::to_string(top / all) + " of its largest)");
-  out.derivs.assign(6, std::vector<double>(n));
-  std::copy(q0.begin(), q0.end(), out.derivs[0].begin());
-  std::copy(v0.begin(), v0.end(), out.derivs[1].begin());
-  // d^(m+2)q/dt^(m+2) at s = 0 is m!·c_m/tau^m.
-  const double scale[4] = {1.0, 1.0 / tau, 2.0 / (tau * tau), 6.0 / (tau * tau * tau)};
-  for (int m = 0; m < 4; ++m)
-    for (std::size_t i = 0; i < n; ++i)
-      out.derivs[static_cast<std::size_t>(m) + 2][i] = scale[m] * c[static_cast<std::size_t>(m) * n + i];
+  require_resolved(c, n);
+  derivatives_at_start(q0, v0, tau, c, out.derivs);
   return out;
 }
 
@@ -258,8 +285,7 @@ void Gear5::start(System& system, double t0, double dt, std::span<const double> 
   t_ = t0;
   dt_ = dt;
   steps_ = 0;
-  layout_ = PartLayout(n_, system.coordinate_blocks(),
-                       n_ > kMinParallelCoordinates ? static_cast<std::size_t>(max_threads()) : 1);
+  layout_ = PartLayout(n_, blocks_, team_for(system));
   r_[0].assign(q0.begin(), q0.end());
   for (int k = 1; k < 6; ++k) r_[k].assign(layout_.size(), 0.0);
   v_.assign(v0.begin(), v0.end());
@@ -350,7 +376,7 @@ int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, do
 }
 
 void Gear5::begin_step(System& system) {
-  bad_.reserve(static_cast<std::size_t>(max_threads()));
+  bad_.reserve(team_for(system));
   system.bind(t_ + dt_, r_[0], v_, a_);
 }
 
@@ -415,7 +441,7 @@ void VelocityVerlet::start(System& system, double t0, double dt, std::span<const
 }
 
 void VelocityVerlet::begin_step(System& system) {
-  bad_.reserve(static_cast<std::size_t>(max_threads()));
+  bad_.reserve(team_for(system));
   system.bind(t_ + dt_, q_, v_est_, a_);
 }
 

@@ -205,35 +205,35 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   return clipped_overlap(pi, pj, first_clip_edge, hint, f, cache);
 }
 
-ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, std::size_t first_clip_edge,
-                                const OverlapHint* hint, OverlapFrame& f, OverlapLines* cache) {
+// The pieces of clipped_overlap, forced inline: they share its stack frame and registers as when they were
+// written in one body (the contact force's hot path).
+
+// P_i in the local frame about o, as the clipper's first polygon (edge k labelled k), and P_j beside it.
+[[gnu::always_inline]] inline void to_local_frame(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& o,
+                                                  std::array<Vec2, kMaxContactPolygonVertices>& li,
+                                                  std::array<Vec2, kMaxContactPolygonVertices>& lj,
+                                                  LabelledPolygon& start) {
   const std::size_t n = pi.size(), m = pj.size();
-  const Vec2& o = f.o;
-  const Vec2& dc = f.dc;
-  const double eps_area = f.eps_area, eps_len = f.eps_len;
-  OverlapPolygon* const overlap = f.overlap;
-  ContactGeometry r;
-  std::array<Vec2, kMaxContactPolygonVertices> li, lj;
-  LabelledPolygon buf_a, buf_b;
-  LabelledPolygon* cur = &buf_a;
-  LabelledPolygon* next = &buf_b;
   for (std::size_t k = 0; k < n; ++k) {
     li[k] = pi[k] - o;
-    cur->v[k] = li[k];
-    cur->label[k] = static_cast<int>(k);
+    start.v[k] = li[k];
+    start.label[k] = static_cast<int>(k);
   }
-  cur->size = n;
+  start.size = n;
   for (std::size_t k = 0; k < m; ++k) lj[k] = pj[k] - o;
-  const std::span<const Vec2> si(li.data(), n), sj(lj.data(), m);
+}
 
-  // Clip by P_j's edges starting at `first_clip_edge` (the edge facing P_i cuts P_i down to a sliver
-  // first, so the later steps handle few vertices); the intersection does not depend on the order.
-  const bool hinted_j = hint && hint->edge_j < m && hint->reach_j > 0.0;
-  const std::size_t first = hinted_j ? hint->edge_j : first_clip_edge < m ? first_clip_edge : 0;
+// P_i ∩ P_j: `cur` (P_i) clipped by the half-planes of P_j's edges (sj), starting at edge `first`. The edge
+// facing P_i cuts P_i down to a sliver first, so the later steps handle few vertices; the intersection does
+// not depend on the order. Returns whether the hint's reach of P_j's facing edge holds what is left.
+[[gnu::always_inline]] inline bool clip_by_pj(LabelledPolygon*& cur, LabelledPolygon*& next, std::span<const Vec2> sj,
+                                              std::size_t n, std::size_t first, bool hinted_j,
+                                              const OverlapHint* hint) {
+  const std::size_t m = sj.size();
   auto clip_by = [&](std::size_t step) {
     const std::size_t b = first + step < m ? first + step : first + step - m;
-    const Vec2& a0 = lj[b];
-    const Vec2& a1 = lj[b + 1 == m ? 0 : b + 1];
+    const Vec2& a0 = sj[b];
+    const Vec2& a1 = sj[b + 1 == m ? 0 : b + 1];
     if (a0 == a1) return;  // a repeated vertex bounds nothing
     if (clip_step(*cur, a0, a1, static_cast<int>(n + b), *next)) std::swap(cur, next);
   };
@@ -248,12 +248,15 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
   } else {
     for (std::size_t step = 1; step < m && cur->size > 0; ++step) clip_by(step);
   }
-  const LabelledPolygon& P = *cur;
+  return near_j;
+}
+
+// Whether the clipped polygon P (at least 3 vertices) is a regular overlap: then its lines in order from the
+// lowest label are in f.label, its vertices from them in f.v, and the lines in `cache`. An edge shorter than
+// tol/2 here is shorter than tol from the lines as well (the vertices differ by round-off): not regular, no
+// need to try (the thin slivers of neighbours barely turned against each other).
+[[gnu::always_inline]] inline bool regular_overlap(const LabelledPolygon& P, OverlapFrame& f, OverlapLines* cache) {
   const std::size_t K = P.size;
-  if (K < 3) return r;
-  // A regular overlap: its lines in order from the lowest label, its vertices from them. An edge shorter than
-  // tol/2 here is shorter than tol from the lines as well (the vertices differ by round-off): not regular, no
-  // need to try (the thin slivers of neighbours barely turned against each other).
   bool short_edge = false;
   for (std::size_t k = 0; k < K; ++k)
     short_edge |= (P.v[k + 1 == K ? 0 : k + 1] - P.v[k]).squaredNorm() <= 0.25 * f.edges.tol2;
@@ -266,20 +269,21 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
         cache->size = static_cast<std::uint8_t>(K);
         for (std::size_t k = 0; k < K; ++k) cache->label[k] = static_cast<std::uint8_t>(f.label[k]);
       }
-      return f.regular_result(K);
+      return true;
     }
   }
-  const std::span<const Vec2> pv(P.v.data(), K);
-  if (overlap) {
-    overlap->size = K;
-    for (std::size_t k = 0; k < K; ++k) overlap->vertex[k] = P.v[k] + o;
-  }
-  const double area = signed_area(pv);
-  if (!(area > eps_area)) return r;
-  r.area = area;
+  return false;
+}
 
-  // Crossings: vertices where the edge label switches between P_i and P_j, moved to the midpoint of
-  // any run of shared edges around them.
+// The crossings of the boundaries of P_i and P_j (in si, sj) on the overlap P: vertices where the edge
+// label switches between P_i and P_j, moved to the midpoint of any run of shared edges around them (an
+// edge on both boundaries belongs to neither). None when the boundaries coincide all around (identical
+// polygons). Returns their count.
+[[gnu::always_inline]] inline std::size_t boundary_crossings(const LabelledPolygon& P, std::span<const Vec2> si,
+                                                             std::span<const Vec2> sj, const OverlapHint* hint,
+                                                             bool near_j, std::size_t first, double eps_len,
+                                                             std::array<Vec2, kMaxOverlapVertices>& cross_pt) {
+  const std::size_t n = si.size(), K = P.size;
   const auto nn = static_cast<int>(n);
   auto owner_j = [&](std::size_t e) { return P.label[e] >= nn; };
   // Shared status of each edge, evaluated on demand: -1 unknown, 0 no, 1 yes.
@@ -308,7 +312,6 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
   };
   // An index below 2K wrapped into [0, K): one subtraction instead of a division.
   auto wrap = [K](std::size_t k) { return k >= K ? k - K : k; };
-  std::array<Vec2, kMaxOverlapVertices> cross_pt;
   std::size_t count = 0;
   bool all_shared = false;
   for (std::size_t k = 0; k < K && !all_shared; ++k) {
@@ -324,9 +327,13 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
     cross_pt[count++] = 0.5 * (P.v[wrap(k + K - back)] + P.v[wrap(k + fwd)]);
   }
   if (all_shared) count = 0;
-  r.crossings = static_cast<int>(count);
+  return count;
+}
 
-  // Cancel pairs of neighbouring crossings closer than eps_L (cyclically), until none is left.
+// Cancel pairs of neighbouring crossings closer than eps_L (cyclically), until none is left: an excursion
+// of one boundary that does not cross the other. Returns the count left.
+[[gnu::always_inline]] inline std::size_t cancel_close_crossings(std::array<Vec2, kMaxOverlapVertices>& cross_pt,
+                                                                 std::size_t count, double eps_len) {
   bool cancelled = true;
   while (cancelled && count >= 2) {
     cancelled = false;
@@ -343,16 +350,22 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
       break;
     }
   }
-  r.distinct_crossings = static_cast<int>(count);
+  return count;
+}
 
+// The contact line through the two crossings farthest apart (the only pair in the normal case; first found
+// wins ties), or, with fewer than 2, the enclosed case at the overlap's centroid along the line of centres.
+[[gnu::always_inline]] inline void contact_from_crossings(ContactGeometry& r,
+                                                          const std::array<Vec2, kMaxOverlapVertices>& cross_pt,
+                                                          std::size_t count, std::span<const Vec2> pv, const Vec2& o,
+                                                          const Vec2& dc) {
   if (count < 2) {
     r.kind = ContactGeometry::Kind::enclosed;
     r.point = centroid(pv) + o;
     r.p1 = r.p2 = r.point;
     r.normal = centre_normal(dc);
-    return r;
+    return;
   }
-  // The pair farthest apart (the only pair in the normal case); first found wins ties.
   std::size_t best_a = 0, best_b = 1;
   double best = -1.0;
   for (std::size_t a = 0; a + 1 < count; ++a) {
@@ -370,6 +383,42 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
   r.p2 = cross_pt[best_b] + o;
   r.point = 0.5 * (cross_pt[best_a] + cross_pt[best_b]) + o;
   r.normal = line_normal(cross_pt[best_a], cross_pt[best_b], dc);
+}
+
+ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, std::size_t first_clip_edge,
+                                const OverlapHint* hint, OverlapFrame& f, OverlapLines* cache) {
+  const std::size_t n = pi.size(), m = pj.size();
+  const Vec2& o = f.o;
+  const double eps_area = f.eps_area, eps_len = f.eps_len;
+  OverlapPolygon* const overlap = f.overlap;
+  ContactGeometry r;
+  std::array<Vec2, kMaxContactPolygonVertices> li, lj;
+  LabelledPolygon buf_a, buf_b;
+  LabelledPolygon* cur = &buf_a;
+  LabelledPolygon* next = &buf_b;
+  to_local_frame(pi, pj, o, li, lj, *cur);
+  const std::span<const Vec2> si(li.data(), n), sj(lj.data(), m);
+  const bool hinted_j = hint && hint->edge_j < m && hint->reach_j > 0.0;
+  const std::size_t first = hinted_j ? hint->edge_j : first_clip_edge < m ? first_clip_edge : 0;
+  const bool near_j = clip_by_pj(cur, next, sj, n, first, hinted_j, hint);
+  const LabelledPolygon& P = *cur;
+  const std::size_t K = P.size;
+  if (K < 3) return r;
+  if (regular_overlap(P, f, cache)) return f.regular_result(K);
+  const std::span<const Vec2> pv(P.v.data(), K);
+  if (overlap) {
+    overlap->size = K;
+    for (std::size_t k = 0; k < K; ++k) overlap->vertex[k] = P.v[k] + o;
+  }
+  const double area = signed_area(pv);
+  if (!(area > eps_area)) return r;
+  r.area = area;
+  std::array<Vec2, kMaxOverlapVertices> cross_pt;
+  std::size_t count = boundary_crossings(P, si, sj, hint, near_j, first, eps_len, cross_pt);
+  r.crossings = static_cast<int>(count);
+  count = cancel_close_crossings(cross_pt, count, eps_len);
+  r.distinct_crossings = static_cast<int>(count);
+  contact_from_crossings(r, cross_pt, count, pv, o, f.dc);
   return r;
 }
 

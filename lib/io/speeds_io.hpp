@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/provenance.hpp"
 #include "io/hdf5.hpp"
 
 namespace frac::io {
@@ -89,5 +90,8 @@ SpeedsRecord read_speeds(const Group& root);
 // "key value" lines (values to 10 significant digits, text values verbatim), for --format text, after
 // `provenance` (frac::provenance_line) as a '#' line.
 std::string speeds_text(const SpeedsRecord& r, const std::string& provenance);
+// Writes `path` ("-": standard output) whole: the key value lines of speeds_text (text) or an HDF5 file of
+// kind "speeds" (header and /speeds) for `run`.
+void write_speeds_file(const std::string& path, const SpeedsRecord& r, const ToolRun& run, bool text);
 
 }  // namespace frac::io

@@ -181,208 +181,238 @@ void attributes(Writer& w, int indent, const std::vector<Field>& fields, const c
   }
 }
 
-}  // namespace
-
-std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport* report) {
-  const std::string kind = check_header(root, {"mesh", "run"});
-  const bool run = kind == "run";
-  const bool cells = mesh_kind(root) == MeshKind::cells;
-  // The mesh validated as every tool reads it: no sidecar for a mesh no tool may run on.
-  std::optional<mesh::CellMesh> cell_mesh;
-  if (cells) cell_mesh = read_cell_mesh(root);
-  else read_node_mesh(root);
-  const std::string body_group = cells ? "particles/cells" : "particles/nodes";
-  const std::string link_group = cells ? "connectivity/beams" : "connectivity/bonds";
-  const std::string body_name = cells ? "cells" : "nodes", link_name = cells ? "beams" : "bonds";
-  const std::string& file = opt.data_file;
-  XdmfReport rep;
-
-  // Sizes: bodies from the reference geometry, links from the pairs, frames from position/time.
-  const Group bodies = root.group(body_group);
-  const std::string ref_name = cells ? "centroid" : "reference_position";
-  const auto ref = dataset_shape(bodies, ref_name);
-  if (!ref || ref->dims.size() != 2 || ref->dims[1] != 2 || ref->number_type != "Float")
-    throw InputError(bodies.where(ref_name) + ": missing, or not [N,2] floating point");
-  const std::size_t n = ref->dims[0];
-  const Group links = root.group(link_group);
-  const auto pairs = dataset_shape(links, "pairs");
-  if (!pairs || pairs->dims.size() != 2 || pairs->dims[1] != 2 || pairs->number_type == "Float")
-    throw InputError(links.where("pairs") + ": missing, or not [B,2] integers");
-  const std::size_t b = pairs->dims[0];
+// What a sidecar describes: the file's kind, its groups, sizes and reference shapes, and the fields shown.
+struct Sidecar {
+  std::string kind;
+  bool run = false, cells = true;
+  std::string body_group, link_group, body_name, link_name, ref_name;
+  std::string file;  // the data file, as the sidecar names it
+  std::size_t n = 0, b = 0, frames = 0;  // bodies, links, frames
+  std::optional<Shape> ref, pairs, position;
   std::vector<double> time;
-  std::optional<Shape> position;
-  if (run) {
-    time = bodies.read<double>("position/time", nullptr, 1);
-    position = dataset_shape(bodies, "position/value");
-    if (!position || position->dims.size() != 3 || position->dims[0] != time.size() || position->dims[1] != n ||
-        position->dims[2] != 2 || position->number_type != "Float")
+  std::vector<Field> body_fields, link_fields, statics;
+  bool polygons = false;
+};
+
+// Sizes: bodies from the reference geometry, links from the pairs, frames from position/time.
+void read_sizes(const Group& root, Sidecar& s) {
+  const Group bodies = root.group(s.body_group);
+  s.ref = dataset_shape(bodies, s.ref_name);
+  if (!s.ref || s.ref->dims.size() != 2 || s.ref->dims[1] != 2 || s.ref->number_type != "Float")
+    throw InputError(bodies.where(s.ref_name) + ": missing, or not [N,2] floating point");
+  s.n = s.ref->dims[0];
+  const Group links = root.group(s.link_group);
+  s.pairs = dataset_shape(links, "pairs");
+  if (!s.pairs || s.pairs->dims.size() != 2 || s.pairs->dims[1] != 2 || s.pairs->number_type == "Float")
+    throw InputError(links.where("pairs") + ": missing, or not [B,2] integers");
+  s.b = s.pairs->dims[0];
+  if (s.run) {
+    s.time = bodies.read<double>("position/time", nullptr, 1);
+    s.position = dataset_shape(bodies, "position/value");
+    if (!s.position || s.position->dims.size() != 3 || s.position->dims[0] != s.time.size() ||
+        s.position->dims[1] != s.n || s.position->dims[2] != 2 || s.position->number_type != "Float")
       throw InputError(bodies.where("position/value") + ": not [T,N,2] floating point with T = length of time");
   }
-  const std::size_t frames = time.size();
-  rep.bodies = n;
-  rep.links = b;
-  rep.frames = frames;
+  s.frames = s.time.size();
+}
 
-  // Attributes: every per-body and per-link dataset and time series, and the fragment labels.
-  // (A run's points move: the reference geometry is left out of their attributes.)
+// Attributes: every per-body and per-link dataset and time series, and the fragment labels.
+// (A run's points move: the reference geometry is left out of their attributes.)
+void collect_fields(const Group& root, const XdmfOptions& opt, Sidecar& s, std::vector<std::string>& notes) {
   std::vector<std::string> skip{"position", "vertex_offset", "vertex"};
-  if (run) skip.push_back(ref_name);
-  std::vector<Field> body_fields = fields_of(root, body_group, n, frames, skip, file, rep.notes);
-  std::vector<Field> link_fields = fields_of(root, link_group, b, frames, {"pairs"}, file, rep.notes);
-  if (run) {
-    for (auto& f : fields_of(root, link_group + "/trajectory", b, frames, {}, file, rep.notes)) {
+  if (s.run) skip.push_back(s.ref_name);
+  s.body_fields = fields_of(root, s.body_group, s.n, s.frames, skip, s.file, notes);
+  s.link_fields = fields_of(root, s.link_group, s.b, s.frames, {"pairs"}, s.file, notes);
+  if (s.run) {
+    for (auto& f : fields_of(root, s.link_group + "/trajectory", s.b, s.frames, {}, s.file, notes)) {
       // The trajectory's intact flags override the mesh's static ones (rubber: the notch).
-      std::erase_if(link_fields, [&](const Field& s) { return s.name == f.name; });
-      link_fields.push_back(std::move(f));
+      std::erase_if(s.link_fields, [&](const Field& x) { return x.name == f.name; });
+      s.link_fields.push_back(std::move(f));
     }
   }
   if (opt.fragments) {
-    if (!cells) throw UsageError("--fragments: " + root.file() + " is a rubber-lattice file; fragments label cells");
+    if (!s.cells) throw UsageError("--fragments: " + root.file() + " is a rubber-lattice file; fragments label cells");
     check_header(*opt.fragments, {"fragments"});
-    const auto s = dataset_shape(*opt.fragments, "fragments/cell_fragment");
-    if (!s || s->dims.size() != 1 || s->number_type == "Float")
+    const auto shape = dataset_shape(*opt.fragments, "fragments/cell_fragment");
+    if (!shape || shape->dims.size() != 1 || shape->number_type == "Float")
       throw InputError(opt.fragments->where("fragments/cell_fragment") + ": missing, or not a column of integers");
-    if (s->dims[0] != n)
-      throw InputError(opt.fragments->where("fragments/cell_fragment") + ": labels " + std::to_string(s->dims[0]) +
-                       " cells, " + root.file() + " has " + std::to_string(n) + " (fragments of another run?)");
-    body_fields.push_back({"fragment", "/fragments/cell_fragment", *s, false, opt.fragments_file});
+    if (shape->dims[0] != s.n)
+      throw InputError(opt.fragments->where("fragments/cell_fragment") + ": labels " + std::to_string(shape->dims[0]) +
+                       " cells, " + root.file() + " has " + std::to_string(s.n) + " (fragments of another run?)");
+    s.body_fields.push_back({"fragment", "/fragments/cell_fragment", *shape, false, opt.fragments_file});
   }
+}
+
+// Shared by every grid of points (each refers to it by XInclude; it is the first element of the
+// Domain): the Polyvertex topology, whose connectivity 0 .. N-1 no dataset of the file holds. The
+// whole Topology is shared, not its DataItem: Xdmf3 moves an inline array into the first topology
+// that takes it, leaving nothing for the others.
+void write_points_topology(Writer& w, std::size_t n) {
+  w.line(2, "<Topology Name=\"points\" TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
+                "\" NodesPerElement=\"1\">");
+  w.line(3, "<DataItem Dimensions=\"" + std::to_string(n) + "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">");
+  std::string ids;
+  for (std::size_t i = 0; i < n; ++i) {
+    ids += std::to_string(i);
+    ids += (i + 1) % 20 == 0 || i + 1 == n ? '\n' : ' ';
+  }
+  w.text += ids;
+  w.line(3, "</DataItem>");
+  w.line(2, "</Topology>");
+}
+
+// Whether the reference polygons go inline: --polygons on, or automatic within the inline vertex limit
+// (with a note when they are left out).
+bool inline_polygons(const Group& root, const Sidecar& s, const XdmfOptions& opt, std::vector<std::string>& notes) {
+  if (!s.cells) return false;
+  const auto vertex = dataset_shape(root.group(s.body_group), "vertex");
+  const std::size_t vertices = vertex && !vertex->dims.empty() ? vertex->dims[0] : 0;
+  const bool polygons = opt.polygons == XdmfPolygons::on ||
+                        (opt.polygons == XdmfPolygons::automatic && vertices <= opt.inline_vertex_limit);
+  if (!polygons && opt.polygons == XdmfPolygons::automatic)
+    notes.push_back("polygons left out: " + std::to_string(vertices) + " vertices is above the inline limit of " +
+                    std::to_string(opt.inline_vertex_limit) + " (--polygons on writes them anyway)");
+  return polygons;
+}
+
+// The polygons of the reference state, inline (their world vertices are stored nowhere): a Mixed
+// topology of Polygon elements and its geometry, the second and third elements of the Domain, shared
+// by the polygon grids.
+void write_polygons(Writer& w, const mesh::CellMesh& m, XdmfReport& rep) {
+  std::string topo, geom;
+  std::size_t length = 0;
+  for (std::size_t k = 0; k < m.cells(); ++k) {
+    const auto poly = m.world_polygon(k);
+    const std::size_t first = static_cast<std::size_t>(m.vertex_offset[k]);
+    topo += "3 " + std::to_string(poly.size());
+    length += 2 + poly.size();
+    for (std::size_t j = 0; j < poly.size(); ++j) {
+      topo += ' ';
+      topo += std::to_string(first + j);
+      append_number(geom, poly[j].x());
+      geom += ' ';
+      append_number(geom, poly[j].y());
+      geom += '\n';
+    }
+    topo += '\n';
+  }
+  rep.polygon_vertices = m.vertex.size();
+  w.line(2, "<Topology Name=\"reference_polygons\" TopologyType=\"Mixed\" NumberOfElements=\"" +
+                std::to_string(m.cells()) + "\">");
+  w.line(3, "<DataItem Dimensions=\"" + std::to_string(length) + "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">");
+  w.text += topo;
+  w.line(3, "</DataItem>");
+  w.line(2, "</Topology>");
+  w.line(2, "<Geometry Name=\"reference_polygons\" GeometryType=\"XY\">");
+  w.line(3, "<DataItem Dimensions=\"" + std::to_string(m.vertex.size()) +
+                " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">");
+  w.text += geom;
+  w.line(3, "</DataItem>");
+  w.line(2, "</Geometry>");
+}
+
+// A polygon grid: the reference state, at every frame of a run (it does not move: ParaView's Xdmf3
+// readers drop a grid without a time from a file whose other grids have times).
+void polygons_grid(Writer& w, const Sidecar& s, int indent, std::optional<std::size_t> frame) {
+  w.line(indent, "<Grid Name=\"reference_polygons\" GridType=\"Uniform\">");
+  if (frame) w.line(indent + 1, "<Time Value=\"" + number(s.time[*frame]) + "\"/>");
+  w.line(indent + 1, "<xi:include xpointer=\"element(/1/1/2)\"/>");
+  w.line(indent + 1, "<xi:include xpointer=\"element(/1/1/3)\"/>");
+  attributes(w, indent + 1, s.statics, "Cell", 0);
+  w.line(indent, "</Grid>");
+}
+
+// The points' geometry: a frame's positions, or the reference geometry of a mesh.
+void points_geometry(Writer& w, const Sidecar& s, int indent, std::optional<std::size_t> frame) {
+  w.line(indent, "<Geometry GeometryType=\"XY\">");
+  if (frame) w.frame_slab(indent + 1, s.file, "/" + s.body_group + "/position/value", *s.position, *frame);
+  else w.hdf(indent + 1, s.file, "/" + s.body_group + "/" + s.ref_name, *s.ref);
+  w.line(indent, "</Geometry>");
+}
+
+void points_grid(Writer& w, const Sidecar& s, int indent, std::optional<std::size_t> frame) {
+  w.line(indent, "<Grid Name=\"" + s.body_name + "\" GridType=\"Uniform\">");
+  if (frame) w.line(indent + 1, "<Time Value=\"" + number(s.time[*frame]) + "\"/>");
+  w.line(indent + 1, "<xi:include xpointer=\"element(/1/1/1)\"/>");  // the shared points topology
+  points_geometry(w, s, indent + 1, frame);
+  attributes(w, indent + 1, s.body_fields, "Node", frame.value_or(0));
+  w.line(indent, "</Grid>");
+}
+
+void links_grid(Writer& w, const Sidecar& s, int indent, std::optional<std::size_t> frame) {
+  w.line(indent, "<Grid Name=\"" + s.link_name + "\" GridType=\"Uniform\">");
+  if (frame) w.line(indent + 1, "<Time Value=\"" + number(s.time[*frame]) + "\"/>");
+  w.line(indent + 1, "<Topology TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(s.b) +
+                         "\" NodesPerElement=\"2\">");
+  w.hdf(indent + 2, s.file, "/" + s.link_group + "/pairs", *s.pairs);
+  w.line(indent + 1, "</Topology>");
+  points_geometry(w, s, indent + 1, frame);
+  attributes(w, indent + 1, s.link_fields, "Cell", frame.value_or(0));
+  w.line(indent, "</Grid>");
+}
+
+// A temporal collection of one grid per frame.
+void temporal_collection(Writer& w, const Sidecar& s, const std::string& name,
+                         void (*grid)(Writer&, const Sidecar&, int, std::optional<std::size_t>)) {
+  w.line(2, "<Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Temporal\">");
+  for (std::size_t k = 0; k < s.frames; ++k) grid(w, s, 3, k);
+  w.line(2, "</Grid>");
+}
+
+// Points and links: one grid each for a mesh, a temporal collection of one grid per frame for a run.
+void write_grids(Writer& w, const Sidecar& s) {
+  if (!s.run) {
+    if (s.polygons) polygons_grid(w, s, 2, std::nullopt);
+    points_grid(w, s, 2, std::nullopt);
+    if (s.b > 0) links_grid(w, s, 2, std::nullopt);
+    return;
+  }
+  if (s.polygons) temporal_collection(w, s, "reference_polygons", polygons_grid);
+  temporal_collection(w, s, s.body_name, points_grid);
+  if (s.b > 0) temporal_collection(w, s, s.link_name, links_grid);
+}
+
+}  // namespace
+
+std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport* report) {
+  Sidecar s;
+  s.kind = check_header(root, {"mesh", "run"});
+  s.run = s.kind == "run";
+  s.cells = mesh_kind(root) == MeshKind::cells;
+  // The mesh validated as every tool reads it: no sidecar for a mesh no tool may run on.
+  std::optional<mesh::CellMesh> cell_mesh;
+  if (s.cells) cell_mesh = read_cell_mesh(root);
+  else read_node_mesh(root);
+  s.body_group = s.cells ? "particles/cells" : "particles/nodes";
+  s.link_group = s.cells ? "connectivity/beams" : "connectivity/bonds";
+  s.body_name = s.cells ? "cells" : "nodes";
+  s.link_name = s.cells ? "beams" : "bonds";
+  s.ref_name = s.cells ? "centroid" : "reference_position";
+  s.file = opt.data_file;
+  XdmfReport rep;
+  read_sizes(root, s);
+  rep.bodies = s.n;
+  rep.links = s.b;
+  rep.frames = s.frames;
+  collect_fields(root, opt, s, rep.notes);
 
   Writer w;
   w.flavour = opt.flavour;
   w.line(0, "<?xml version=\"1.0\" encoding=\"utf-8\"?>");
   w.line(0, std::string("<Xdmf Version=\"") + (opt.flavour == XdmfFlavour::xdmf3 ? "3.0" : "2.0") +
                 "\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">");
-  w.line(1, "<Domain Name=\"" + xml_escape(file) + "\">");
-  // Shared by every grid of points (each refers to it by XInclude; it is the first element of the
-  // Domain): the Polyvertex topology, whose connectivity 0 .. N-1 no dataset of the file holds. The
-  // whole Topology is shared, not its DataItem: Xdmf3 moves an inline array into the first topology
-  // that takes it, leaving nothing for the others.
-  w.line(2, "<Topology Name=\"points\" TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
-                "\" NodesPerElement=\"1\">");
-  w.line(3, "<DataItem Dimensions=\"" + std::to_string(n) + "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">");
-  {
-    std::string ids;
-    for (std::size_t i = 0; i < n; ++i) {
-      ids += std::to_string(i);
-      ids += (i + 1) % 20 == 0 || i + 1 == n ? '\n' : ' ';
-    }
-    w.text += ids;
-  }
-  w.line(3, "</DataItem>");
-  w.line(2, "</Topology>");
-  const std::string points_topology = "<xi:include xpointer=\"element(/1/1/1)\"/>";
-
-  // The polygons of the reference state, inline (their world vertices are stored nowhere): a Mixed
-  // topology of Polygon elements and its geometry, the second and third elements of the Domain, shared
-  // by the polygon grids.
-  bool polygons = false;
-  if (cells) {
-    const auto vertex = dataset_shape(bodies, "vertex");
-    const std::size_t vertices = vertex && !vertex->dims.empty() ? vertex->dims[0] : 0;
-    polygons = opt.polygons == XdmfPolygons::on ||
-               (opt.polygons == XdmfPolygons::automatic && vertices <= opt.inline_vertex_limit);
-    if (!polygons && opt.polygons == XdmfPolygons::automatic)
-      rep.notes.push_back("polygons left out: " + std::to_string(vertices) + " vertices is above the inline limit of " +
-                          std::to_string(opt.inline_vertex_limit) + " (--polygons on writes them anyway)");
-  }
-  if (polygons) {
-    const mesh::CellMesh& m = *cell_mesh;
-    std::string topo, geom;
-    std::size_t length = 0;
-    for (std::size_t k = 0; k < m.cells(); ++k) {
-      const auto poly = m.world_polygon(k);
-      const std::size_t first = static_cast<std::size_t>(m.vertex_offset[k]);
-      topo += "3 " + std::to_string(poly.size());
-      length += 2 + poly.size();
-      for (std::size_t j = 0; j < poly.size(); ++j) {
-        topo += ' ';
-        topo += std::to_string(first + j);
-        append_number(geom, poly[j].x());
-        geom += ' ';
-        append_number(geom, poly[j].y());
-        geom += '\n';
-      }
-      topo += '\n';
-    }
-    rep.polygon_vertices = m.vertex.size();
-    w.line(2, "<Topology Name=\"reference_polygons\" TopologyType=\"Mixed\" NumberOfElements=\"" +
-                  std::to_string(m.cells()) + "\">");
-    w.line(3, "<DataItem Dimensions=\"" + std::to_string(length) + "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">");
-    w.text += topo;
-    w.line(3, "</DataItem>");
-    w.line(2, "</Topology>");
-    w.line(2, "<Geometry Name=\"reference_polygons\" GeometryType=\"XY\">");
-    w.line(3, "<DataItem Dimensions=\"" + std::to_string(m.vertex.size()) +
-                  " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">");
-    w.text += geom;
-    w.line(3, "</DataItem>");
-    w.line(2, "</Geometry>");
-  }
-  w.line(2, "<Information Name=\"fracture\" Value=\"XDMF sidecar of " + xml_escape(file) + " (" + kind + ", " +
-                (cells ? "polygon cells" : "rubber nodes") + "): docs/xdmf.md\"/>");
+  w.line(1, "<Domain Name=\"" + xml_escape(s.file) + "\">");
+  write_points_topology(w, s.n);
+  s.polygons = inline_polygons(root, s, opt, rep.notes);
+  if (s.polygons) write_polygons(w, *cell_mesh, rep);
+  w.line(2, "<Information Name=\"fracture\" Value=\"XDMF sidecar of " + xml_escape(s.file) + " (" + s.kind + ", " +
+                (s.cells ? "polygon cells" : "rubber nodes") + "): docs/xdmf.md\"/>");
   if (!opt.provenance.empty())
     w.line(2, "<Information Name=\"" + std::string(kProvenanceKey) + "\" Value=\"" + xml_escape(opt.provenance) +
                   "\"/>");
-  std::vector<Field> statics;
-  for (const auto& f : body_fields)
-    if (!f.series) statics.push_back(f);
-  // A polygon grid: the reference state, at every frame of a run (it does not move: ParaView's Xdmf3
-  // readers drop a grid without a time from a file whose other grids have times).
-  auto polygons_grid = [&](int indent, std::optional<std::size_t> frame) {
-    w.line(indent, "<Grid Name=\"reference_polygons\" GridType=\"Uniform\">");
-    if (frame) w.line(indent + 1, "<Time Value=\"" + number(time[*frame]) + "\"/>");
-    w.line(indent + 1, "<xi:include xpointer=\"element(/1/1/2)\"/>");
-    w.line(indent + 1, "<xi:include xpointer=\"element(/1/1/3)\"/>");
-    attributes(w, indent + 1, statics, "Cell", 0);
-    w.line(indent, "</Grid>");
-  };
-
-  // Points and links: one grid each for a mesh, a temporal collection of one grid per frame for a run.
-  auto points_grid = [&](int indent, std::optional<std::size_t> frame) {
-    w.line(indent, "<Grid Name=\"" + body_name + "\" GridType=\"Uniform\">");
-    if (frame) w.line(indent + 1, "<Time Value=\"" + number(time[*frame]) + "\"/>");
-    w.line(indent + 1, points_topology);
-    w.line(indent + 1, "<Geometry GeometryType=\"XY\">");
-    if (frame) w.frame_slab(indent + 2, file, "/" + body_group + "/position/value", *position, *frame);
-    else w.hdf(indent + 2, file, "/" + body_group + "/" + ref_name, *ref);
-    w.line(indent + 1, "</Geometry>");
-    attributes(w, indent + 1, body_fields, "Node", frame.value_or(0));
-    w.line(indent, "</Grid>");
-  };
-  auto links_grid = [&](int indent, std::optional<std::size_t> frame) {
-    w.line(indent, "<Grid Name=\"" + link_name + "\" GridType=\"Uniform\">");
-    if (frame) w.line(indent + 1, "<Time Value=\"" + number(time[*frame]) + "\"/>");
-    w.line(indent + 1, "<Topology TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(b) +
-                           "\" NodesPerElement=\"2\">");
-    w.hdf(indent + 2, file, "/" + link_group + "/pairs", *pairs);
-    w.line(indent + 1, "</Topology>");
-    w.line(indent + 1, "<Geometry GeometryType=\"XY\">");
-    if (frame) w.frame_slab(indent + 2, file, "/" + body_group + "/position/value", *position, *frame);
-    else w.hdf(indent + 2, file, "/" + body_group + "/" + ref_name, *ref);
-    w.line(indent + 1, "</Geometry>");
-    attributes(w, indent + 1, link_fields, "Cell", frame.value_or(0));
-    w.line(indent, "</Grid>");
-  };
-  if (!run) {
-    if (polygons) polygons_grid(2, std::nullopt);
-    points_grid(2, std::nullopt);
-    if (b > 0) links_grid(2, std::nullopt);
-  } else {
-    if (polygons) {
-      w.line(2, "<Grid Name=\"reference_polygons\" GridType=\"Collection\" CollectionType=\"Temporal\">");
-      for (std::size_t k = 0; k < frames; ++k) polygons_grid(3, k);
-      w.line(2, "</Grid>");
-    }
-    w.line(2, "<Grid Name=\"" + body_name + "\" GridType=\"Collection\" CollectionType=\"Temporal\">");
-    for (std::size_t k = 0; k < frames; ++k) points_grid(3, k);
-    w.line(2, "</Grid>");
-    if (b > 0) {
-      w.line(2, "<Grid Name=\"" + link_name + "\" GridType=\"Collection\" CollectionType=\"Temporal\">");
-      for (std::size_t k = 0; k < frames; ++k) links_grid(3, k);
-      w.line(2, "</Grid>");
-    }
-  }
+  for (const auto& f : s.body_fields)
+    if (!f.series) s.statics.push_back(f);
+  write_grids(w, s);
   w.line(1, "</Domain>");
   w.line(0, "</Xdmf>");
   if (report) *report = rep;

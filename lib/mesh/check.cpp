@@ -101,6 +101,253 @@ void check_overlaps(const CellMesh& m, double len_tol, double g, Failures& fail)
                         "comparing the cells would take more than linear time");
 }
 
+// The arrays of a cell mesh agree in size, and every cell has at least 3 vertices. Nothing else can be
+// checked (nor indexed) otherwise.
+bool cell_arrays_consistent(const CellMesh& m, Failures& fail) {
+  const std::size_t n = m.cells();
+  bool arrays_ok = true;
+  if (m.vertex_offset.size() != n + 1) {
+    fail.add("arrays", "vertex_offset has " + std::to_string(m.vertex_offset.size()) + " entries, expected " +
+                           std::to_string(n + 1));
+    arrays_ok = false;
+  } else if (m.vertex_offset.front() != 0 || m.vertex_offset.back() != static_cast<std::int64_t>(m.vertex.size())) {
+    fail.add("arrays", "vertex_offset must run from 0 to the number of vertices");
+    arrays_ok = false;
+  }
+  if (m.area.size() != n || m.second_moment.size() != n) {
+    fail.add("arrays", "area/second_moment sizes differ from the number of cells");
+    arrays_ok = false;
+  }
+  if (m.beam_length.size() != m.beams() || m.beam_section.size() != m.beams()) {
+    fail.add("arrays", "beam_length/beam_section sizes differ from the number of beams");
+    arrays_ok = false;
+  }
+  // In order from offset 0: each step is taken only from an offset already known to lie in
+  // [0, vertices], so the difference cannot overflow.
+  for (std::size_t k = 0; arrays_ok && k < n; ++k) {
+    if (m.vertex_offset[k + 1] < m.vertex_offset[k] || m.vertex_offset[k + 1] - m.vertex_offset[k] < 3) {
+      fail.add("arrays", "cell " + std::to_string(k) + " has fewer than 3 vertices (or offsets decrease)");
+      arrays_ok = false;
+    }
+  }
+  return arrays_ok;
+}
+
+// Finite values first: a NaN or an infinity makes every later comparison meaningless.
+bool cell_values_finite(const CellMesh& m, Failures& fail) {
+  const std::size_t n = m.cells();
+  auto finite = [](const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); };
+  bool all_finite = true;
+  auto non_finite = [&](const std::string& what) {
+    fail.add("finite", what + " is not finite");
+    all_finite = false;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    auto id = [&] { return "cell " + std::to_string(k); };
+    if (!finite(m.centroid[k])) non_finite(id() + ": centroid");
+    if (!std::isfinite(m.area[k])) non_finite(id() + ": area");
+    if (!std::isfinite(m.second_moment[k])) non_finite(id() + ": second_moment");
+    const auto poly = m.polygon(k);
+    for (std::size_t j = 0; j < poly.size(); ++j)
+      if (!finite(poly[j])) {
+        non_finite(id() + ": vertex " + std::to_string(j));
+        break;
+      }
+  }
+  for (std::size_t e = 0; e < m.beams(); ++e) {
+    if (!std::isfinite(m.beam_length[e])) non_finite("beam " + std::to_string(e) + ": length");
+    if (!std::isfinite(m.beam_section[e])) non_finite("beam " + std::to_string(e) + ": section");
+  }
+  if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
+  for (const double b : m.bounds)
+    if (!std::isfinite(b)) {
+      non_finite("attribute bounds");
+      break;
+    }
+  return all_finite;
+}
+
+// Each cell: centroid in the box, convex and counter-clockwise, body frame about its centroid, area and
+// second moment those of its vertices.
+void check_cells(const CellMesh& m, double len_tol, double rel_tol, Failures& fail) {
+  const auto& box = m.bounds;
+  for (std::size_t k = 0; k < m.cells(); ++k) {
+    const auto poly = m.polygon(k);
+    auto id = [&] { return std::string("cell " + std::to_string(k)); };
+    const Vec2& p = m.centroid[k];
+    if (!(p.x() >= box[0] - len_tol && p.x() <= box[2] + len_tol && p.y() >= box[1] - len_tol &&
+          p.y() <= box[3] + len_tol))
+      fail.add("bounds", id() + ": centroid (" + fmt(p.x()) + ", " + fmt(p.y()) + ") lies outside the box");
+    if (!geometry::is_convex_ccw(poly, 1e-9)) fail.add("convex", id() + " is not convex and counter-clockwise");
+    const Vec2 c = geometry::centroid(poly);
+    if (!(c.norm() <= len_tol)) {
+      fail.add("centroid", id() + ": body-frame centroid at distance " + fmt(c.norm()) + " m");
+    }
+    const double a = geometry::signed_area(poly);
+    if (!(m.area[k] > 0)) {
+      fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2 is not positive");
+    } else if (!(std::abs(a - m.area[k]) <= rel_tol * std::abs(a))) {
+      fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2, vertices give " + fmt(a));
+    }
+    const double j = geometry::polar_second_moment(poly);
+    if (!(std::abs(j - m.second_moment[k]) <= rel_tol * std::abs(j))) {
+      fail.add("second_moment", id() + ": " + fmt(m.second_moment[k]) + " m^4, vertices give " + fmt(j));
+    }
+  }
+}
+
+// Each beam: cells in range, distinct and in order, beams sorted without repeats, its length the distance
+// of the centroids and its section the side the two cells share. Counts the beams of each cell in `degree`.
+void check_beams(const CellMesh& m, double len_tol, Failures& fail, std::vector<int>& degree) {
+  const std::size_t n = m.cells();
+  std::vector<Vec2> pa, pb;
+  for (std::size_t e = 0; e < m.beams(); ++e) {
+    const auto [a, b] = m.beam[e];
+    auto id = [&] {
+      return std::string("beam " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
+    };
+    if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
+      fail.add("beam index", id() + " out of range");
+      continue;
+    }
+    if (a == b) {
+      fail.add("beam order", id() + " joins a cell to itself");
+      continue;
+    }
+    if (a > b) fail.add("beam order", id() + ": need cell_a < cell_b");
+    if (e > 0 && !(m.beam[e - 1] < m.beam[e])) {
+      fail.add(m.beam[e - 1] == m.beam[e] ? "beam duplicate" : "beam order",
+               id() + " follows " + std::to_string(m.beam[e - 1][0]) + ", " + std::to_string(m.beam[e - 1][1]));
+    }
+    const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    ++degree[ua];
+    ++degree[ub];
+    const double l0 = (m.centroid[ub] - m.centroid[ua]).norm();
+    if (!(m.beam_length[e] > 0)) {
+      fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m is not positive");
+    } else if (!(std::abs(m.beam_length[e] - l0) <= len_tol)) {
+      fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m, centroids " + fmt(l0) + " m apart");
+    }
+    if (!(m.beam_section[e] > 0.0)) {
+      fail.add("beam section", id() + ": section " + fmt(m.beam_section[e]) + " m is not positive");
+      continue;
+    }
+    pa.clear();  // world polygons in reused buffers
+    pb.clear();
+    for (const auto& v : m.polygon(ua)) pa.push_back(v + m.centroid[ua]);
+    for (const auto& v : m.polygon(ub)) pb.push_back(v + m.centroid[ub]);
+    const double s = shared_side(pa, pb, len_tol);
+    if (!(std::abs(m.beam_section[e] - s) <= len_tol)) {
+      fail.add("beam section", id() + ": section " + fmt(m.beam_section[e]) + " m, shared side " + fmt(s) + " m");
+    }
+  }
+}
+
+std::string cell_mesh_summary(const CellMesh& m, double total_area, const std::map<int, std::int64_t>& neighbours) {
+  const std::size_t n = m.cells();
+  std::ostringstream s;
+  s.precision(6);
+  s << "cells: " << n << " (" << (m.shape.empty() ? "?" : m.shape) << ", spacing " << m.spacing << " m, disorder "
+    << m.disorder << ", region " << m.disorder_region << ")\n";
+  s << "beams: " << m.beams() << " ("
+    << (n > 0 ? 2.0 * static_cast<double>(m.beams()) / static_cast<double>(n) : 0.0) << " per cell)\n";
+  s << "total area: " << total_area << " m^2, mean area: " << total_area / static_cast<double>(n) << " m^2\n";
+  s << "beams per cell: " << histogram_line(neighbours, n) << "\n";
+  return s.str();
+}
+
+// The node mesh's counts and arrays agree; false when the bond arrays do not (nothing else can be checked).
+bool node_arrays_consistent(const NodeMesh& m, Failures& fail) {
+  const std::size_t n = m.nodes();
+  if (n < 2) fail.add("nodes", "need at least 2, have " + std::to_string(n));
+  if (m.nx < 0 || m.ny < 0) {
+    fail.add("nodes", "nx = " + std::to_string(m.nx) + ", ny = " + std::to_string(m.ny) + ": negative");
+  } else if (m.nx > 0 && m.ny > 0 &&
+             (m.nx > static_cast<std::int64_t>(n) / m.ny || m.nx * m.ny != static_cast<std::int64_t>(n))) {
+    fail.add("nodes", std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx) + " * " +
+                          std::to_string(m.ny));
+  }
+  if (m.bond_length.size() != m.bonds() || m.intact.size() != m.bonds()) {
+    fail.add("arrays", "bond_length/intact sizes differ from the number of bonds");
+    return false;
+  }
+  return true;
+}
+
+bool node_values_finite(const NodeMesh& m, Failures& fail) {
+  bool all_finite = true;
+  auto non_finite = [&](const std::string& what) {
+    fail.add("finite", what + " is not finite");
+    all_finite = false;
+  };
+  for (std::size_t k = 0; k < m.nodes(); ++k) {
+    if (!std::isfinite(m.position[k].x()) || !std::isfinite(m.position[k].y()))
+      non_finite("node " + std::to_string(k) + ": position");
+  }
+  for (std::size_t e = 0; e < m.bonds(); ++e)
+    if (!std::isfinite(m.bond_length[e])) non_finite("bond " + std::to_string(e) + ": length");
+  if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
+  if (!std::isfinite(m.notch_length)) non_finite("attribute notch_length");
+  if (!std::isfinite(m.notch_y)) non_finite("attribute notch_y");
+  return all_finite;
+}
+
+// Each bond: nodes in range, distinct and in order, bonds sorted without repeats, its length the distance
+// of the nodes, intact 0 or 1. Counts the intact bonds of each node in `degree`; returns the intact bonds.
+std::int64_t check_bonds(const NodeMesh& m, Failures& fail, std::vector<int>& degree) {
+  const std::size_t n = m.nodes();
+  std::int64_t intact = 0;
+  for (std::size_t e = 0; e < m.bonds(); ++e) {
+    const auto [a, b] = m.bond[e];
+    auto id = [&] {
+      return std::string("bond " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
+    };
+    if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
+      fail.add("bond index", id() + " out of range");
+      continue;
+    }
+    if (a == b) {
+      fail.add("bond order", id() + " joins a node to itself");
+      continue;
+    }
+    if (a > b) fail.add("bond order", id() + ": need node_a < node_b");
+    if (e > 0 && !(m.bond[e - 1] < m.bond[e])) {
+      fail.add(m.bond[e - 1] == m.bond[e] ? "bond duplicate" : "bond order",
+               id() + " follows " + std::to_string(m.bond[e - 1][0]) + ", " + std::to_string(m.bond[e - 1][1]));
+    }
+    const double dist = (m.position[static_cast<std::size_t>(b)] - m.position[static_cast<std::size_t>(a)]).norm();
+    const double scale = m.spacing > 0.0 ? m.spacing : m.bond_length[e];
+    if (!(m.bond_length[e] > 0)) {
+      fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m is not positive");
+    } else if (!(std::abs(m.bond_length[e] - dist) <= 1e-9 * scale)) {
+      fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m, nodes " + fmt(dist) + " m apart");
+    }
+    if (m.intact[e] > 1) fail.add("intact", id() + ": intact must be 0 or 1");
+    if (m.intact[e] == 1) {
+      ++intact;
+      ++degree[static_cast<std::size_t>(a)];
+      ++degree[static_cast<std::size_t>(b)];
+    }
+  }
+  return intact;
+}
+
+std::string node_mesh_summary(const NodeMesh& m, std::int64_t intact, const std::map<int, std::int64_t>& neighbours) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "nodes: " << m.nodes() << " (" << m.nx << " x " << m.ny << ")\n";
+  s << "bonds: " << m.bonds() << " (intact " << intact << ", cut " << static_cast<std::int64_t>(m.bonds()) - intact
+    << ")\n";
+  s << "spacing: " << m.spacing << " m, close-packed rows along " << m.rows_along << "\n";
+  if (m.notch_length > 0.0) {
+    s << "notch: " << m.notch_length << " m from the left edge along y = " << m.notch_y << " m\n";
+  } else {
+    s << "notch: none\n";
+  }
+  s << "intact bonds per node: " << histogram_line(neighbours, m.nodes()) << "\n";
+  return s.str();
+}
+
 }  // namespace
 
 // Tolerances are relative to the grid spacing g (or sqrt of the mean area when the spacing is not
@@ -116,63 +363,8 @@ MeshReport check_cell_mesh(const CellMesh& m) {
     [&] {
       const std::size_t n = m.cells();
       if (n == 0) fail.add("cells", "none");
-      bool arrays_ok = true;
-      if (m.vertex_offset.size() != n + 1) {
-        fail.add("arrays", "vertex_offset has " + std::to_string(m.vertex_offset.size()) + " entries, expected " +
-                               std::to_string(n + 1));
-        arrays_ok = false;
-      } else if (m.vertex_offset.front() != 0 || m.vertex_offset.back() != static_cast<std::int64_t>(m.vertex.size())) {
-        fail.add("arrays", "vertex_offset must run from 0 to the number of vertices");
-        arrays_ok = false;
-      }
-      if (m.area.size() != n || m.second_moment.size() != n) {
-        fail.add("arrays", "area/second_moment sizes differ from the number of cells");
-        arrays_ok = false;
-      }
-      if (m.beam_length.size() != m.beams() || m.beam_section.size() != m.beams()) {
-        fail.add("arrays", "beam_length/beam_section sizes differ from the number of beams");
-        arrays_ok = false;
-      }
-      // In order from offset 0: each step is taken only from an offset already known to lie in
-      // [0, vertices], so the difference cannot overflow.
-      for (std::size_t k = 0; arrays_ok && k < n; ++k) {
-        if (m.vertex_offset[k + 1] < m.vertex_offset[k] || m.vertex_offset[k + 1] - m.vertex_offset[k] < 3) {
-          fail.add("arrays", "cell " + std::to_string(k) + " has fewer than 3 vertices (or offsets decrease)");
-          arrays_ok = false;
-        }
-      }
-      if (!arrays_ok) return;
-
-      // Finite values first: a NaN or an infinity makes every later comparison meaningless.
-      auto finite = [](const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); };
-      bool all_finite = true;
-      auto non_finite = [&](const std::string& what) {
-        fail.add("finite", what + " is not finite");
-        all_finite = false;
-      };
-      for (std::size_t k = 0; k < n; ++k) {
-        auto id = [&] { return "cell " + std::to_string(k); };
-        if (!finite(m.centroid[k])) non_finite(id() + ": centroid");
-        if (!std::isfinite(m.area[k])) non_finite(id() + ": area");
-        if (!std::isfinite(m.second_moment[k])) non_finite(id() + ": second_moment");
-        const auto poly = m.polygon(k);
-        for (std::size_t j = 0; j < poly.size(); ++j)
-          if (!finite(poly[j])) {
-            non_finite(id() + ": vertex " + std::to_string(j));
-            break;
-          }
-      }
-      for (std::size_t e = 0; e < m.beams(); ++e) {
-        if (!std::isfinite(m.beam_length[e])) non_finite("beam " + std::to_string(e) + ": length");
-        if (!std::isfinite(m.beam_section[e])) non_finite("beam " + std::to_string(e) + ": section");
-      }
-      if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
-      for (const double b : m.bounds)
-        if (!std::isfinite(b)) {
-          non_finite("attribute bounds");
-          break;
-        }
-      if (!all_finite) return;
+      if (!cell_arrays_consistent(m, fail)) return;
+      if (!cell_values_finite(m, fail)) return;
 
       double total_area = 0.0;
       for (std::size_t k = 0; k < n; ++k) total_area += m.area[k];
@@ -190,84 +382,11 @@ MeshReport check_cell_mesh(const CellMesh& m) {
                                ") is empty");
 
       std::vector<int> degree(n, 0);
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto poly = m.polygon(k);
-        auto id = [&] { return std::string("cell " + std::to_string(k)); };
-        const Vec2& p = m.centroid[k];
-        if (!(p.x() >= box[0] - len_tol && p.x() <= box[2] + len_tol && p.y() >= box[1] - len_tol &&
-              p.y() <= box[3] + len_tol))
-          fail.add("bounds", id() + ": centroid (" + fmt(p.x()) + ", " + fmt(p.y()) + ") lies outside the box");
-        if (!geometry::is_convex_ccw(poly, 1e-9)) fail.add("convex", id() + " is not convex and counter-clockwise");
-        const Vec2 c = geometry::centroid(poly);
-        if (!(c.norm() <= len_tol)) {
-          fail.add("centroid", id() + ": body-frame centroid at distance " + fmt(c.norm()) + " m");
-        }
-        const double a = geometry::signed_area(poly);
-        if (!(m.area[k] > 0)) {
-          fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2 is not positive");
-        } else if (!(std::abs(a - m.area[k]) <= rel_tol * std::abs(a))) {
-          fail.add("area", id() + ": area " + fmt(m.area[k]) + " m^2, vertices give " + fmt(a));
-        }
-        const double j = geometry::polar_second_moment(poly);
-        if (!(std::abs(j - m.second_moment[k]) <= rel_tol * std::abs(j))) {
-          fail.add("second_moment", id() + ": " + fmt(m.second_moment[k]) + " m^4, vertices give " + fmt(j));
-        }
-      }
-
-      std::vector<Vec2> pa, pb;
-      for (std::size_t e = 0; e < m.beams(); ++e) {
-        const auto [a, b] = m.beam[e];
-        auto id = [&] {
-          return std::string("beam " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
-        };
-        if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
-          fail.add("beam index", id() + " out of range");
-          continue;
-        }
-        if (a == b) {
-          fail.add("beam order", id() + " joins a cell to itself");
-          continue;
-        }
-        if (a > b) fail.add("beam order", id() + ": need cell_a < cell_b");
-        if (e > 0 && !(m.beam[e - 1] < m.beam[e])) {
-          fail.add(m.beam[e - 1] == m.beam[e] ? "beam duplicate" : "beam order",
-                   id() + " follows " + std::to_string(m.beam[e - 1][0]) + ", " + std::to_string(m.beam[e - 1][1]));
-        }
-        const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
-        ++degree[ua];
-        ++degree[ub];
-        const double l0 = (m.centroid[ub] - m.centroid[ua]).norm();
-        if (!(m.beam_length[e] > 0)) {
-          fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m is not positive");
-        } else if (!(std::abs(m.beam_length[e] - l0) <= len_tol)) {
-          fail.add("beam length", id() + ": " + fmt(m.beam_length[e]) + " m, centroids " + fmt(l0) + " m apart");
-        }
-        if (!(m.beam_section[e] > 0.0)) {
-          fail.add("beam section", id() + ": section " + fmt(m.beam_section[e]) + " m is not positive");
-          continue;
-        }
-        pa.clear();  // world polygons in reused buffers
-        pb.clear();
-        for (const auto& v : m.polygon(ua)) pa.push_back(v + m.centroid[ua]);
-        for (const auto& v : m.polygon(ub)) pb.push_back(v + m.centroid[ub]);
-        const double s = shared_side(pa, pb, len_tol);
-        if (!(std::abs(m.beam_section[e] - s) <= len_tol)) {
-          fail.add("beam section", id() + ": section " + fmt(m.beam_section[e]) + " m, shared side " + fmt(s) + " m");
-        }
-      }
-
+      check_cells(m, len_tol, rel_tol, fail);
+      check_beams(m, len_tol, fail, degree);
       if (r.failures.empty()) check_overlaps(m, len_tol, g, fail);  // (it needs convex cells, as checked)
       for (const int d : degree) ++r.neighbour_count[d];
-
-      std::ostringstream s;
-      s.precision(6);
-      s << "cells: " << n << " (" << (m.shape.empty() ? "?" : m.shape) << ", spacing " << m.spacing << " m, disorder "
-        << m.disorder << ", region " << m.disorder_region << ")\n";
-      s << "beams: " << m.beams() << " ("
-        << (n > 0 ? 2.0 * static_cast<double>(m.beams()) / static_cast<double>(n) : 0.0) << " per cell)\n";
-      s << "total area: " << total_area << " m^2, mean area: " << total_area / static_cast<double>(n) << " m^2\n";
-      s << "beams per cell: " << histogram_line(r.neighbour_count, n) << "\n";
-      r.summary = s.str();
+      r.summary = cell_mesh_summary(m, total_area, r.neighbour_count);
     }();
   }
   return r;
@@ -281,88 +400,17 @@ MeshReport check_node_mesh(const NodeMesh& m) {
   {
     Failures fail(r.failures);  // its destructor appends the counts of failures not shown
     [&] {
-      const std::size_t n = m.nodes();
-      if (n < 2) fail.add("nodes", "need at least 2, have " + std::to_string(n));
-      if (m.nx < 0 || m.ny < 0) {
-        fail.add("nodes", "nx = " + std::to_string(m.nx) + ", ny = " + std::to_string(m.ny) + ": negative");
-      } else if (m.nx > 0 && m.ny > 0 &&
-                 (m.nx > static_cast<std::int64_t>(n) / m.ny || m.nx * m.ny != static_cast<std::int64_t>(n))) {
-        fail.add("nodes", std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx) + " * " +
-                              std::to_string(m.ny));
-      }
-      if (m.bond_length.size() != m.bonds() || m.intact.size() != m.bonds()) {
-        fail.add("arrays", "bond_length/intact sizes differ from the number of bonds");
-        return;
-      }
-      bool all_finite = true;
-      auto non_finite = [&](const std::string& what) {
-        fail.add("finite", what + " is not finite");
-        all_finite = false;
-      };
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!std::isfinite(m.position[k].x()) || !std::isfinite(m.position[k].y()))
-          non_finite("node " + std::to_string(k) + ": position");
-      }
-      for (std::size_t e = 0; e < m.bonds(); ++e)
-        if (!std::isfinite(m.bond_length[e])) non_finite("bond " + std::to_string(e) + ": length");
-      if (!std::isfinite(m.spacing)) non_finite("attribute spacing");
-      if (!std::isfinite(m.notch_length)) non_finite("attribute notch_length");
-      if (!std::isfinite(m.notch_y)) non_finite("attribute notch_y");
-      if (!all_finite) return;
+      if (!node_arrays_consistent(m, fail)) return;
+      if (!node_values_finite(m, fail)) return;
       if (m.spacing < 0) fail.add("spacing", fmt(m.spacing) + " m is negative");
       if (m.rows_along != "x" && m.rows_along != "y")
         fail.add("rows_along", "'" + m.rows_along + "': expected x or y");
       if (m.notch_length < 0) fail.add("notch", "notch_length " + fmt(m.notch_length) + " m is negative");
 
-      std::vector<int> degree(n, 0);
-      std::int64_t intact = 0;
-      for (std::size_t e = 0; e < m.bonds(); ++e) {
-        const auto [a, b] = m.bond[e];
-        auto id = [&] {
-          return std::string("bond " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
-        };
-        if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
-          fail.add("bond index", id() + " out of range");
-          continue;
-        }
-        if (a == b) {
-          fail.add("bond order", id() + " joins a node to itself");
-          continue;
-        }
-        if (a > b) fail.add("bond order", id() + ": need node_a < node_b");
-        if (e > 0 && !(m.bond[e - 1] < m.bond[e])) {
-          fail.add(m.bond[e - 1] == m.bond[e] ? "bond duplicate" : "bond order",
-                   id() + " follows " + std::to_string(m.bond[e - 1][0]) + ", " + std::to_string(m.bond[e - 1][1]));
-        }
-        const double dist = (m.position[static_cast<std::size_t>(b)] - m.position[static_cast<std::size_t>(a)]).norm();
-        const double scale = m.spacing > 0.0 ? m.spacing : m.bond_length[e];
-        if (!(m.bond_length[e] > 0)) {
-          fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m is not positive");
-        } else if (!(std::abs(m.bond_length[e] - dist) <= 1e-9 * scale)) {
-          fail.add("bond length", id() + ": " + fmt(m.bond_length[e]) + " m, nodes " + fmt(dist) + " m apart");
-        }
-        if (m.intact[e] > 1) fail.add("intact", id() + ": intact must be 0 or 1");
-        if (m.intact[e] == 1) {
-          ++intact;
-          ++degree[static_cast<std::size_t>(a)];
-          ++degree[static_cast<std::size_t>(b)];
-        }
-      }
+      std::vector<int> degree(m.nodes(), 0);
+      const std::int64_t intact = check_bonds(m, fail, degree);
       for (const int d : degree) ++r.neighbour_count[d];
-
-      std::ostringstream s;
-      s.precision(6);
-      s << "nodes: " << n << " (" << m.nx << " x " << m.ny << ")\n";
-      s << "bonds: " << m.bonds() << " (intact " << intact << ", cut " << static_cast<std::int64_t>(m.bonds()) - intact
-        << ")\n";
-      s << "spacing: " << m.spacing << " m, close-packed rows along " << m.rows_along << "\n";
-      if (m.notch_length > 0.0) {
-        s << "notch: " << m.notch_length << " m from the left edge along y = " << m.notch_y << " m\n";
-      } else {
-        s << "notch: none\n";
-      }
-      s << "intact bonds per node: " << histogram_line(r.neighbour_count, n) << "\n";
-      r.summary = s.str();
+      r.summary = node_mesh_summary(m, intact, r.neighbour_count);
     }();
   }
   return r;

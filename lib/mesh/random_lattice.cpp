@@ -104,62 +104,53 @@ std::vector<geometry::Vec2> throw_sites(std::int64_t n_x, std::int64_t n_y, doub
   return sites;
 }
 
-}  // namespace
-
-void refuse_ignored_options(const RandomLatticeOptions& opt, const std::set<std::string>& given) {
-  const auto refuse = [&](const std::string& option, bool ignored, const std::string& why) {
-    if (ignored && given.count(option)) throw UsageError("--" + option + ": " + why);
-  };
-  refuse("size", opt.shape == "disc", "applies to --shape rect; a disc takes --diameter");
-  refuse("diameter", opt.shape == "rect", "applies to --shape disc; a rectangle takes --size");
-}
-
-CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
-  validate(opt);
-  CellMesh m;
-  m.shape = opt.shape;
-  m.disorder = opt.disorder;
-  m.disorder_region = opt.disorder_region;
-
+// The grid the sites are thrown on: n_x × n_y cells of size g (g_y upright) from `origin`, and the box
+// the Voronoi cells are clipped to.
+struct SiteGrid {
   std::int64_t n_x = 0, n_y = 0;
-  double g = 0.0, g_y = 0.0, radius = 0.0;
+  double g = 0.0, g_y = 0.0, radius = 0.0;  // radius: of the disc (0 for a rectangle)
   geometry::Vec2 origin;
   std::array<double, 4> box{};
-  if (opt.shape == "rect") {
-    n_x = opt.nx;
-    n_y = opt.ny;
-    g = opt.width / static_cast<double>(opt.nx);
-    g_y = opt.height / static_cast<double>(opt.ny);
-    origin = geometry::Vec2(0.0, 0.0);
-    box = {0.0, 0.0, opt.width, opt.height};
-    m.bounds = box;
-  } else {
-    radius = 0.5 * opt.diameter;
-    g = std::sqrt(std::numbers::pi * radius * radius / static_cast<double>(opt.cells));
-    // Grid centred on the origin covering [-R - 4g, R + 4g]^2. A margin of 3g suffices for the square
-    // region (a kept cell has its vertices within 2 sqrt(2) g of its centroid, so it never touches the
-    // box); 4g also covers the disc region with a = g (empty circles of radius < (1 + 1/sqrt(2)) g).
-    g_y = g;
-    n_x = n_y = static_cast<std::int64_t>(std::ceil(2.0 * (radius + 4.0 * g) / g));
-    const double half = 0.5 * static_cast<double>(n_x) * g;
-    origin = geometry::Vec2(-half, -half);
-    box = {-half, -half, half, half};
-    m.bounds = {-radius, -radius, radius, radius};
-  }
-  m.spacing = g;
+};
 
-  const std::vector<geometry::Vec2> sites = throw_sites(n_x, n_y, g, g_y, origin, opt, box);
-  // Merge Voronoi vertices closer than 1e-9 g: at disorder 0 the four sites around a grid vertex are
-  // cocircular and the two triangles' circumcenters differ only by round-off (~1e-16 of the coordinates).
-  FlatVoronoiDiagram vd = voronoi_in_box_flat(sites, box, 1e-9 * g);
-  const std::size_t n = sites.size();
+// The grid of a rectangle (the box itself), or of a disc of radius R: centred on the origin and covering
+// [-R - 4g, R + 4g]^2, with g the side of a square of the disc's area per cell. A margin of 3g suffices
+// for the square region (a kept cell has its vertices within 2 sqrt(2) g of its centroid, so it never
+// touches the box); 4g also covers the disc region with a = g (empty circles of radius < (1 + 1/sqrt(2)) g).
+// Sets the mesh's bounds.
+SiteGrid site_grid(const RandomLatticeOptions& opt, CellMesh& m) {
+  SiteGrid s;
+  if (opt.shape == "rect") {
+    s.n_x = opt.nx;
+    s.n_y = opt.ny;
+    s.g = opt.width / static_cast<double>(opt.nx);
+    s.g_y = opt.height / static_cast<double>(opt.ny);
+    s.origin = geometry::Vec2(0.0, 0.0);
+    s.box = {0.0, 0.0, opt.width, opt.height};
+    m.bounds = s.box;
+  } else {
+    s.radius = 0.5 * opt.diameter;
+    s.g = std::sqrt(std::numbers::pi * s.radius * s.radius / static_cast<double>(opt.cells));
+    s.g_y = s.g;
+    s.n_x = s.n_y = static_cast<std::int64_t>(std::ceil(2.0 * (s.radius + 4.0 * s.g) / s.g));
+    const double half = 0.5 * static_cast<double>(s.n_x) * s.g;
+    s.origin = geometry::Vec2(-half, -half);
+    s.box = {-half, -half, half, half};
+    m.bounds = {-s.radius, -s.radius, s.radius, s.radius};
+  }
+  return s;
+}
+
+// The Voronoi cells kept as the mesh's cells (world vertices and centroids), in grid order: all of them for
+// a rectangle, the ones whose centroid lies within R for a disc. Returns new_index: a kept site's cell
+// index, -1 for a dropped site.
+std::vector<std::int64_t> keep_cells(FlatVoronoiDiagram& vd, const RandomLatticeOptions& opt, double radius,
+                                     CellMesh& m) {
+  const std::size_t n = vd.offset.size() - 1;
   auto world = [&vd](std::size_t k) {
     return std::span<const geometry::Vec2>(vd.vertex.data() + vd.offset[k],
                                            static_cast<std::size_t>(vd.offset[k + 1] - vd.offset[k]));
   };
-
-  // Cells kept, in grid order: all of them for a rectangle, the ones whose centroid lies within R for
-  // a disc. new_index[k] = -1 for a dropped site.
   std::vector<std::int64_t> new_index(n, -1);
   std::vector<geometry::Vec2> c(n);
   std::int64_t kept = 0;
@@ -179,7 +170,7 @@ CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
 
   const auto cells = static_cast<std::size_t>(kept);
   if (cells == n) {
-    // Every cell kept (a rectangle): take the flat arrays over and shift to body frames in place.
+    // Every cell kept (a rectangle): take the flat arrays over (shifted to body frames in place later).
     m.vertex_offset = std::move(vd.offset);
     m.vertex = std::move(vd.vertex);
     m.centroid = std::move(c);
@@ -195,6 +186,12 @@ CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
       m.centroid.push_back(c[k]);
     }
   }
+  return new_index;
+}
+
+// Each cell's vertices about its centroid (the body frame), its area and polar second moment.
+void to_body_frames(CellMesh& m) {
+  const std::size_t cells = m.centroid.size();
   m.area.resize(cells);
   m.second_moment.resize(cells);
   for (std::size_t k = 0; k < cells; ++k) {
@@ -205,9 +202,12 @@ CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
     m.area[k] = geometry::signed_area(body);
     m.second_moment[k] = geometry::polar_second_moment(body);
   }
+}
 
-  // Beams: neighbour pairs come sorted (a < b) from voronoi_in_box and the renumbering keeps the order.
-  const double min_side = opt.min_section * g;
+// Beams between kept neighbours whose shared side is positive and at least min_side. Neighbour pairs come
+// sorted (a < b) from voronoi_in_box and the renumbering keeps the order.
+void add_beams(const FlatVoronoiDiagram& vd, const std::vector<std::int64_t>& new_index, double min_side,
+               CellMesh& m) {
   m.beam.reserve(vd.neighbour.size());
   m.beam_length.reserve(vd.neighbour.size());
   m.beam_section.reserve(vd.neighbour.size());
@@ -219,6 +219,35 @@ CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
     m.beam_length.push_back((m.centroid[static_cast<std::size_t>(b)] - m.centroid[static_cast<std::size_t>(a)]).norm());
     m.beam_section.push_back(vd.shared_side[e]);
   }
+}
+
+}  // namespace
+
+void refuse_ignored_options(const RandomLatticeOptions& opt, const std::set<std::string>& given) {
+  const auto refuse = [&](const std::string& option, bool ignored, const std::string& why) {
+    if (ignored && given.count(option)) throw UsageError("--" + option + ": " + why);
+  };
+  refuse("size", opt.shape == "disc", "applies to --shape rect; a disc takes --diameter");
+  refuse("diameter", opt.shape == "rect", "applies to --shape disc; a rectangle takes --size");
+}
+
+CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
+  validate(opt);
+  CellMesh m;
+  m.shape = opt.shape;
+  m.disorder = opt.disorder;
+  m.disorder_region = opt.disorder_region;
+  const SiteGrid grid = site_grid(opt, m);
+  const double g = grid.g;
+  m.spacing = g;
+
+  const std::vector<geometry::Vec2> sites = throw_sites(grid.n_x, grid.n_y, g, grid.g_y, grid.origin, opt, grid.box);
+  // Merge Voronoi vertices closer than 1e-9 g: at disorder 0 the four sites around a grid vertex are
+  // cocircular and the two triangles' circumcenters differ only by round-off (~1e-16 of the coordinates).
+  FlatVoronoiDiagram vd = voronoi_in_box_flat(sites, grid.box, 1e-9 * g);
+  const std::vector<std::int64_t> new_index = keep_cells(vd, opt, grid.radius, m);
+  to_body_frames(m);
+  add_beams(vd, new_index, opt.min_section * g, m);
   return m;
 } catch (const std::bad_alloc&) {
   throw out_of_memory("the Voronoi mesh of " + std::to_string(opt.shape == "disc" ? opt.cells : opt.nx * opt.ny) + " cells");

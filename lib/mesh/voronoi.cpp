@@ -91,23 +91,15 @@ void rotate_to_canonical_start(Polygon& poly) {
   std::rotate(poly.begin(), lowest, poly.end());
 }
 
-}  // namespace
-
-FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box,
-                                       double merge_tol) {
-  const double width = box[2] - box[0], height = box[3] - box[1];
-  if (!(width > 0.0) || !(height > 0.0) || !std::isfinite(width) || !std::isfinite(height)) {
-    throw std::invalid_argument("voronoi_in_box: empty or non-finite box");
-  }
+// The Delaunay triangulation of the sites (info: site index) plus four far dummies (info -1) at the corners
+// of a square of half-side 3 d around the box centre (d = box diagonal). Every site inside that square is
+// strictly inside the convex hull, so its cell is bounded. A box point is at most d from any site in the
+// box and more than 3.7 d from a dummy, so as long as one site lies in the box no dummy cell reaches into
+// the box.
+void triangulate_with_dummies(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box,
+                              Delaunay& dt) {
   const std::size_t n = sites.size();
-  FlatVoronoiDiagram out;
-  out.offset.assign(n + 1, 0);
-  if (n == 0) return out;
-
-  // Real sites plus four far dummies at the corners of a square of half-side 3 d around the box centre
-  // (d = box diagonal). Every site inside that square is strictly inside the convex hull, so its cell
-  // is bounded. A box point is at most d from any site in the box and more than 3.7 d from a dummy, so
-  // as long as one site lies in the box no dummy cell reaches into the box.
+  const double width = box[2] - box[0], height = box[3] - box[1];
   std::vector<std::pair<Point, std::int64_t>> points;
   points.reserve(n + 4);
   for (std::size_t k = 0; k < n; ++k) {
@@ -118,24 +110,22 @@ FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, co
   for (const double sx : {-1.0, 1.0}) {
     for (const double sy : {-1.0, 1.0}) points.emplace_back(Point(cx + sx * far, cy + sy * far), -1);
   }
-
-  Delaunay dt;
   dt.insert(points.begin(), points.end());  // spatially sorted bulk insertion
   if (dt.number_of_vertices() != n + 4) {
     throw std::invalid_argument("voronoi_in_box: sites must be distinct");
   }
-  points.clear();
-  points.shrink_to_fit();
+}
 
-  // Circumcenter of every finite face, computed once (face info = its index; -1 until computed).
-  // Delaunay faces are never flat (exact predicates), so the denominator is not zero.
-  //
-  // Voronoi vertices closer than merge_tol are merged here, once for all cells: faces joined by a
-  // Delaunay edge whose Voronoi edge is that short form clusters (union-find), and every face of a
-  // cluster takes the cluster's mean circumcenter. Merging per cell instead would drop a vertex in
-  // one cell and keep it in the next, leaving slivers of gap (the total area then falls short by
-  // ~1e-10 relative at disorder ~1e-9). With shared points the cells tile the box to round-off and a
-  // collapsed side simply repeats a point. Each edge is tested once, when its second face is reached.
+// Circumcenter of every finite face, computed once (face info = its index; -1 until computed).
+// Delaunay faces are never flat (exact predicates), so the denominator is not zero.
+//
+// Voronoi vertices closer than merge_tol are merged here, once for all cells: faces joined by a
+// Delaunay edge whose Voronoi edge is that short form clusters (union-find), and every face of a
+// cluster takes the cluster's mean circumcenter. Merging per cell instead would drop a vertex in
+// one cell and keep it in the next, leaving slivers of gap (the total area then falls short by
+// ~1e-10 relative at disorder ~1e-9). With shared points the cells tile the box to round-off and a
+// collapsed side simply repeats a point. Each edge is tested once, when its second face is reached.
+std::vector<Vec2> merged_circumcenters(Delaunay& dt, double merge_tol) {
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = -1;
   std::vector<Vec2> center;
   center.reserve(dt.number_of_faces());
@@ -179,56 +169,80 @@ FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, co
       if (count[r] > 1) center[i] = sum[r] / static_cast<double>(count[r]);
     }
   }
+  return center;
+}
 
+// A side of a cell toward a neighbour of higher index in the box.
+struct Side {
+  std::int64_t neighbour;  // > k
+  std::size_t first;       // the side runs from ring[first] to ring[first + 1]
+  double length;           // inside the box
+};
+
+// A site's cell and pairs, gathered in CGAL's memory order: its stretch of the vertices and of the pairs.
+struct Block {
+  std::size_t vertex = 0, pair = 0;  // starts in polys and pending
+  std::uint8_t vertices = 0, pairs = 0;
+};
+
+// The cells as the sites are visited, before they are gathered in site order.
+struct CellBlocks {
+  std::vector<Vec2> polys;
+  std::vector<std::pair<std::int64_t, double>> pending;  // (neighbour, side length)
+  std::vector<Block> block;
+};
+
+// The Voronoi vertices around site v, counter-clockwise, into `ring`: the circumcenters of its faces. Face
+// f_j = (site, a, b) counter-clockwise is followed by the face across its edge site-b, so the side from
+// center(f_j) to center(f_j+1) is the one shared with b = f_j->vertex(cw(index of the site in f_j)). The
+// sides toward neighbours of higher index in the box go to `across`. Returns whether a vertex lies outside
+// the box (the cell needs clipping).
+bool ring_around(const Delaunay& dt, Delaunay::Vertex_handle v, std::size_t k, const std::vector<Vec2>& center,
+                 const std::array<double, 4>& box, const std::vector<char>& in_box, Polygon& ring,
+                 std::vector<Side>& across) {
+  ring.clear();
+  across.clear();
+  bool needs_clip = false;
+  auto fc = dt.incident_faces(v);
+  const auto done = fc;
+  do {
+    if (dt.is_infinite(fc)) {
+      // Cannot happen for a site inside the box (it is strictly inside the dummies' hull).
+      throw std::logic_error("voronoi_in_box: unbounded cell for a site inside the box");
+    }
+    const Vec2& c = center[static_cast<std::size_t>(fc->info())];
+    needs_clip = needs_clip || outside(c, box);
+    ring.push_back(c);
+    const std::int64_t j = fc->vertex(Delaunay::cw(fc->index(v)))->info();
+    if (j > static_cast<std::int64_t>(k) && in_box[static_cast<std::size_t>(j)]) {
+      across.push_back({j, ring.size() - 1, 0.0});
+    }
+  } while (++fc != done);
+  return needs_clip;
+}
+
+// Per cell in the box: its vertices and its pairs with neighbours of higher index (each neighbour pair is
+// recorded once, from its lower index). The sites are visited in CGAL's memory order (spatially sorted:
+// far fewer cache misses than site order); each site's vertices and pairs go to a block of `polys` and
+// `pending`, and the blocks are gathered in site order at the end, which also lists the pairs sorted
+// without a sort.
+CellBlocks cells_in_box(const Delaunay& dt, const std::vector<Vec2>& center, std::span<const geometry::Vec2> sites,
+                        const std::array<double, 4>& box, double merge_tol) {
+  const std::size_t n = sites.size();
   const Polygon box_poly{Vec2(box[0], box[1]), Vec2(box[2], box[1]), Vec2(box[2], box[3]), Vec2(box[0], box[3])};
   std::vector<char> in_box(n);
   for (std::size_t k = 0; k < n; ++k) in_box[k] = !outside(sites[k], box);
-
-  // Per cell: the circumcenters of the faces around the site (counter-clockwise) are the Voronoi
-  // vertices. Face f_j = (site, a, b) counter-clockwise is followed by the face across its edge
-  // site-b, so the side from center(f_j) to center(f_j+1) is the one shared with b =
-  // f_j->vertex(cw(index of the site in f_j)). Each neighbour pair is recorded once, from its lower
-  // index. The sites are visited in CGAL's memory order (spatially sorted: far fewer cache misses
-  // than site order); each site's vertices and pairs go to a block of `polys` and `pending`, and the
-  // blocks are gathered in site order at the end, which also lists the pairs sorted without a sort.
-  struct Side {
-    std::int64_t neighbour;  // > k
-    std::size_t first;       // the side runs from ring[first] to ring[first + 1]
-    double length;           // inside the box
-  };
-  struct Block {
-    std::size_t vertex = 0, pair = 0;  // starts in polys and pending
-    std::uint8_t vertices = 0, pairs = 0;
-  };
   Polygon ring, clipped;  // reused buffers
   std::vector<Side> across;
-  std::vector<Vec2> polys;
-  polys.reserve(6 * n + 16);
-  std::vector<std::pair<std::int64_t, double>> pending;  // (neighbour, side length)
-  pending.reserve(3 * n + 16);
-  std::vector<Block> block(n);
+  CellBlocks cb;
+  cb.polys.reserve(6 * n + 16);
+  cb.pending.reserve(3 * n + 16);
+  cb.block.resize(n);
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
     if (v->info() < 0) continue;  // dummy
     const auto k = static_cast<std::size_t>(v->info());
     if (!in_box[k]) continue;
-    ring.clear();
-    across.clear();
-    bool needs_clip = false;
-    auto fc = dt.incident_faces(v);
-    const auto done = fc;
-    do {
-      if (dt.is_infinite(fc)) {
-        // Cannot happen for a site inside the box (it is strictly inside the dummies' hull).
-        throw std::logic_error("voronoi_in_box: unbounded cell for a site inside the box");
-      }
-      const Vec2& c = center[static_cast<std::size_t>(fc->info())];
-      needs_clip = needs_clip || outside(c, box);
-      ring.push_back(c);
-      const std::int64_t j = fc->vertex(Delaunay::cw(fc->index(v)))->info();
-      if (j > static_cast<std::int64_t>(k) && in_box[static_cast<std::size_t>(j)]) {
-        across.push_back({j, ring.size() - 1, 0.0});
-      }
-    } while (++fc != done);
+    const bool needs_clip = ring_around(dt, v, k, center, box, in_box, ring, across);
 
     // Neighbours: length of the Voronoi edge inside the box.
     const std::size_t m = ring.size();
@@ -238,10 +252,10 @@ FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, co
       side.length = (needs_clip && (outside(p, box) || outside(q, box))) ? clipped_length(p, q, box) : (q - p).norm();
     }
     std::sort(across.begin(), across.end(), [](const Side& a, const Side& b) { return a.neighbour < b.neighbour; });
-    Block& bk = block[k];
-    bk.pair = pending.size();
+    Block& bk = cb.block[k];
+    bk.pair = cb.pending.size();
     for (const auto& side : across) {
-      if (side.length > merge_tol) pending.emplace_back(side.neighbour, side.length);
+      if (side.length > merge_tol) cb.pending.emplace_back(side.neighbour, side.length);
     }
 
     // Merged vertices repeat exactly: drop the repeats. Clipping creates new points on the box sides,
@@ -258,33 +272,56 @@ FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, co
     }
     if (cell->size() < 3) cell->clear();
     rotate_to_canonical_start(*cell);
-    bk.vertex = polys.size();
-    polys.insert(polys.end(), cell->begin(), cell->end());
-    if (cell->size() > 255 || pending.size() - bk.pair > 255) {
+    bk.vertex = cb.polys.size();
+    cb.polys.insert(cb.polys.end(), cell->begin(), cell->end());
+    if (cell->size() > 255 || cb.pending.size() - bk.pair > 255) {
       throw std::logic_error("voronoi_in_box: a cell with more than 255 vertices or neighbours");
     }
     bk.vertices = static_cast<std::uint8_t>(cell->size());
-    bk.pairs = static_cast<std::uint8_t>(pending.size() - bk.pair);
+    bk.pairs = static_cast<std::uint8_t>(cb.pending.size() - bk.pair);
   }
+  return cb;
+}
 
+// The blocks gathered in site order into `out` (offsets already sized n + 1).
+void gather_in_site_order(const CellBlocks& cb, std::size_t n, FlatVoronoiDiagram& out) {
   std::size_t total_vertices = 0, total_pairs = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    total_vertices += block[k].vertices;
-    total_pairs += block[k].pairs;
+    total_vertices += cb.block[k].vertices;
+    total_pairs += cb.block[k].pairs;
     out.offset[k + 1] = static_cast<std::int64_t>(total_vertices);
   }
   out.vertex.resize(total_vertices);
   out.neighbour.reserve(total_pairs);
   out.shared_side.reserve(total_pairs);
   for (std::size_t k = 0; k < n; ++k) {
-    const Block& bk = block[k];
-    std::copy_n(polys.begin() + static_cast<std::ptrdiff_t>(bk.vertex), bk.vertices,
+    const Block& bk = cb.block[k];
+    std::copy_n(cb.polys.begin() + static_cast<std::ptrdiff_t>(bk.vertex), bk.vertices,
                 out.vertex.begin() + out.offset[k]);
     for (std::size_t e = bk.pair; e < bk.pair + bk.pairs; ++e) {
-      out.neighbour.push_back({static_cast<std::int64_t>(k), pending[e].first});
-      out.shared_side.push_back(pending[e].second);
+      out.neighbour.push_back({static_cast<std::int64_t>(k), cb.pending[e].first});
+      out.shared_side.push_back(cb.pending[e].second);
     }
   }
+}
+
+}  // namespace
+
+FlatVoronoiDiagram voronoi_in_box_flat(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box,
+                                       double merge_tol) {
+  const double width = box[2] - box[0], height = box[3] - box[1];
+  if (!(width > 0.0) || !(height > 0.0) || !std::isfinite(width) || !std::isfinite(height)) {
+    throw std::invalid_argument("voronoi_in_box: empty or non-finite box");
+  }
+  const std::size_t n = sites.size();
+  FlatVoronoiDiagram out;
+  out.offset.assign(n + 1, 0);
+  if (n == 0) return out;
+  Delaunay dt;
+  triangulate_with_dummies(sites, box, dt);
+  const std::vector<Vec2> center = merged_circumcenters(dt, merge_tol);
+  const CellBlocks cb = cells_in_box(dt, center, sites, box, merge_tol);
+  gather_in_site_order(cb, n, out);
   return out;
 }
 

@@ -171,15 +171,9 @@ void draw_axes(cairo_t* cr, const Layout& l, const std::array<double, 4>& v) {
   cairo_restore(cr);
 }
 
-void draw(cairo_t* cr, const Figure& f, const Layout& l) {
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-  cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-
+// Plot area: everything in the view, clipped to it; polygons, dots, link segments, then broken-link crosses.
+void draw_plot_area(cairo_t* cr, const Figure& f, const Layout& l) {
   const double link_px = f.link_length * l.scale;
-  // Plot area: everything in the view, clipped to it.
   cairo_save(cr);
   cairo_rectangle(cr, l.plot_x, l.plot_y, l.plot_w, l.plot_h);
   cairo_clip(cr);
@@ -228,6 +222,37 @@ void draw(cairo_t* cr, const Figure& f, const Layout& l) {
   }
   if (!f.markers.empty()) cairo_stroke(cr);
   cairo_restore(cr);
+}
+
+// The legend's title and its entries (colour box and text) from (x, plot top), as far as the plot reaches.
+void draw_legend(cairo_t* cr, const Figure& f, const Layout& l, double x) {
+  double y = l.plot_y + 14;
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  if (!f.legend_title.empty()) {
+    text_at(cr, x, y, f.legend_title, 12);
+    y += 18;
+  }
+  for (const auto& e : f.legend) {
+    if (y > l.plot_y + l.plot_h) break;
+    cairo_rectangle(cr, x, y - 10, 12, 12);
+    set(cr, e.colour);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 0.6);
+    cairo_stroke(cr);
+    text_at(cr, x + 18, y, e.text, 11);
+    y += 16;
+  }
+}
+
+void draw(cairo_t* cr, const Figure& f, const Layout& l) {
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+
+  draw_plot_area(cr, f, l);
 
   cairo_set_source_rgb(cr, 0, 0, 0);
   if (f.axes) draw_axes(cr, l, f.view);
@@ -241,25 +266,7 @@ void draw(cairo_t* cr, const Figure& f, const Layout& l) {
     draw_colour_bar(cr, bar, x, bar_top, bar_h);
     x += kBarColumn;
   }
-  if (!f.legend.empty()) {
-    double y = l.plot_y + 14;
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    if (!f.legend_title.empty()) {
-      text_at(cr, x, y, f.legend_title, 12);
-      y += 18;
-    }
-    for (const auto& e : f.legend) {
-      if (y > l.plot_y + l.plot_h) break;
-      cairo_rectangle(cr, x, y - 10, 12, 12);
-      set(cr, e.colour);
-      cairo_fill_preserve(cr);
-      cairo_set_source_rgb(cr, 0, 0, 0);
-      cairo_set_line_width(cr, 0.6);
-      cairo_stroke(cr);
-      text_at(cr, x + 18, y, e.text, 11);
-      y += 16;
-    }
-  }
+  if (!f.legend.empty()) draw_legend(cr, f, l, x);
 }
 
 struct SurfaceDeleter {

@@ -78,6 +78,137 @@ std::string pretty_unit(const std::string& unit) {
   return unit;
 }
 
+// A dataset or time series that colours the bodies, one value (or a 2-vector, drawn as its length) per body.
+struct ColourField {
+  std::string path, label;
+  bool series = false;
+  int components = 1;
+  std::vector<double> values;  // a static dataset's
+  io::SeriesInfo info;         // a series'
+};
+
+// Finds --colour's dataset or series (absolute, or under the bodies' group first) and checks its shape
+// against the `n` bodies. UsageError naming what was tried or what does not fit.
+ColourField find_colour_field(const io::Group& root, const std::string& colour, bool cells, bool run, std::size_t n) {
+  ColourField field;
+  const std::string body_group = cells ? "particles/cells" : "particles/nodes";
+  std::vector<std::string> candidates;
+  if (colour.front() == '/') candidates.push_back(colour.substr(1));
+  else candidates = {body_group + "/" + colour, colour};
+  for (const auto& c : candidates) {
+    if (!root.has(c)) continue;
+    field.path = c;
+    break;
+  }
+  if (field.path.empty()) {
+    std::string tried;
+    for (const auto& c : candidates) tried += (tried.empty() ? "/" : " and /") + c;
+    throw UsageError("--colour " + colour + ": " + root.file() + " has no dataset or time series " + tried +
+                     " (or use fragment, speed, strain, none)");
+  }
+  const auto slash = field.path.rfind('/');
+  const std::string parent = slash == std::string::npos ? "." : field.path.substr(0, slash);
+  const std::string leaf = slash == std::string::npos ? field.path : field.path.substr(slash + 1);
+  std::vector<hsize_t> dims;
+  std::string unit;
+  field.series = root.has(field.path + "/value");
+  if (field.series) {
+    if (!run) throw UsageError("--colour " + colour + ": a time series in a mesh file");
+    field.info = parent == "." ? io::read_series_info(root, leaf) : io::read_series_info(root.group(parent), leaf);
+    dims = field.info.frame_dims;
+    if (root.has_attr("unit", field.path + "/value")) unit = root.attr_string("unit", field.path + "/value");
+  } else {
+    try {
+      field.values = root.read<double>(field.path, &dims);
+    } catch (const InputError&) {
+      throw UsageError("--colour " + colour + ": " + root.where(field.path) +
+                       " is neither a numeric dataset nor a time series (step, time, value)");
+    }
+    if (root.has_attr("unit", field.path)) unit = root.attr_string("unit", field.path);
+  }
+  const bool scalar = dims.size() == 1 && dims[0] == n;
+  const bool vector = dims.size() == 2 && dims[0] == n && dims[1] == 2;
+  if (!scalar && !vector) {
+    std::string shape;
+    for (auto d : dims) shape += (shape.empty() ? "" : "x") + std::to_string(d);
+    throw UsageError("--colour " + colour + ": " + root.where(field.path) + " has " +
+                     (field.series ? "frames of shape [" : "shape [") + shape + "], not one value (or two) per " +
+                     (cells ? "cell" : "node") + " (" + std::to_string(n) + ")");
+  }
+  field.components = vector ? 2 : 1;
+  field.label = (vector ? "|" + leaf + "|" : leaf) + (unit.empty() ? "" : " (" + pretty_unit(unit) + ")");
+  return field;
+}
+
+// Cells coloured by fragment (single cells grey), and the legend: the 12 largest fragments of more than one
+// cell and the number of single cells.
+std::vector<Rgb> fragment_fill(const FragmentLabels& l, std::size_t n, Figure& fig) {
+  std::vector<Rgb> fill(n, kPlainFill);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto id = l.cell_fragment[i];
+    const bool single = id >= 0 && static_cast<std::size_t>(id) < l.cell_count.size() && l.cell_count[id] <= 1;
+    fill[i] = single ? kDebrisGrey : category(id);
+  }
+  std::size_t shown = 0;
+  for (std::size_t f = 0; f < l.mass.size() && shown < 12; ++f) {
+    if (l.cell_count[f] <= 1) continue;
+    fig.legend.push_back({category(static_cast<std::int64_t>(f)),
+                          "#" + std::to_string(f) + "  " + sci(l.mass[f]) + " kg, " + std::to_string(l.cell_count[f]) +
+                              " cells"});
+    ++shown;
+  }
+  std::size_t singles = 0;
+  for (auto c : l.cell_count) singles += c <= 1 ? 1 : 0;
+  if (singles) fig.legend.push_back({kDebrisGrey, std::to_string(singles) + " single cells"});
+  fig.legend_title = std::to_string(l.mass.size()) + " fragments (frame " + std::to_string(l.frame) + ")";
+  return fill;
+}
+
+// How the links of a frame are drawn.
+struct LinkStyle {
+  LinkMode mode = LinkMode::strain;
+  bool run = false, cells = true;
+  const std::optional<Threshold>* threshold = nullptr;
+  double scale_max = 1.0;  // strain (or strain / threshold) at the ends of the colour scale
+};
+
+// Links: intact ones coloured by strain relative to the threshold, broken ones marked at their middle;
+// the links' colour bar (merged with the bodies' when it is the same scale). Returns the broken links.
+std::size_t add_links(Figure& fig, const std::vector<std::array<std::int64_t, 2>>& links,
+                      const std::vector<double>& position, const std::vector<std::uint8_t>& intact,
+                      const std::vector<double>& strain, const LinkStyle& style) {
+  const std::optional<Threshold>& threshold = *style.threshold;
+  auto at = [&](std::size_t i) { return Vec2(position[2 * i], position[2 * i + 1]); };
+  std::size_t broken = 0;
+  ColourScale scale;
+  scale.palette = Palette::coolwarm;
+  const double m = style.scale_max;
+  scale.min = -m;
+  scale.max = m;
+  const double unit = threshold ? threshold->strain : 1.0;
+  const std::string what = style.cells ? "beam" : "bond";
+  scale.label = what + " strain" + (threshold ? " / threshold (" + threshold->label + ")" : " (1)");
+  const bool colour_links = style.run && style.mode == LinkMode::strain;
+  for (std::size_t b = 0; b < links.size(); ++b) {
+    const auto i = static_cast<std::size_t>(links[b][0]), j = static_cast<std::size_t>(links[b][1]);
+    const Vec2 a = at(i), c = at(j);
+    if (!intact[b]) {
+      fig.markers.push_back(0.5 * (a + c));
+      ++broken;
+    } else if (style.mode == LinkMode::strain) {
+      fig.segments.push_back({a, c, colour_links ? scale(strain[b] / unit) : kPlainLink});
+    }
+  }
+  if (colour_links) {
+    const bool same = threshold && !fig.colour_bars.empty() && fig.colour_bars.back().palette == Palette::coolwarm &&
+                      fig.colour_bars.back().min == scale.min && fig.colour_bars.back().max == scale.max;
+    if (same) fig.colour_bars.back().label = "strain / threshold (" + threshold->label + ")";
+    else fig.colour_bars.push_back(scale);
+  }
+  fig.marker_colour = style.mode == LinkMode::broken ? kBrokenMark : Rgb{0.05, 0.05, 0.05};
+  return broken;
+}
+
 }  // namespace
 
 LinkMode link_mode_from_text(const std::string& text, const std::string& option) {
@@ -169,53 +300,13 @@ RunPicture::RunPicture(const io::Group& root, std::optional<FragmentLabels> labe
   } else if (colour_ == "strain") {
     if (!run_) throw UsageError("--colour strain: " + root.file() + " is a mesh: it has no strains");
   } else if (colour_ != "none") {
-    // A dataset or time series with one value (or a 2-vector) per body.
-    const std::string body_group = cells_ ? "particles/cells" : "particles/nodes";
-    std::vector<std::string> candidates;
-    if (colour_.front() == '/') candidates.push_back(colour_.substr(1));
-    else candidates = {body_group + "/" + colour_, colour_};
-    for (const auto& c : candidates) {
-      if (!root.has(c)) continue;
-      field_path_ = c;
-      break;
-    }
-    if (field_path_.empty()) {
-      std::string tried;
-      for (const auto& c : candidates) tried += (tried.empty() ? "/" : " and /") + c;
-      throw UsageError("--colour " + colour_ + ": " + root.file() + " has no dataset or time series " + tried +
-                       " (or use fragment, speed, strain, none)");
-    }
-    const auto slash = field_path_.rfind('/');
-    const std::string parent = slash == std::string::npos ? "." : field_path_.substr(0, slash);
-    const std::string leaf = slash == std::string::npos ? field_path_ : field_path_.substr(slash + 1);
-    std::vector<hsize_t> dims;
-    std::string unit;
-    field_series_ = root.has(field_path_ + "/value");
-    if (field_series_) {
-      if (!run_) throw UsageError("--colour " + colour_ + ": a time series in a mesh file");
-      field_info_ = parent == "." ? io::read_series_info(root, leaf) : io::read_series_info(root.group(parent), leaf);
-      dims = field_info_.frame_dims;
-      if (root.has_attr("unit", field_path_ + "/value")) unit = root.attr_string("unit", field_path_ + "/value");
-    } else {
-      try {
-        field_static_ = root.read<double>(field_path_, &dims);
-      } catch (const InputError&) {
-        throw UsageError("--colour " + colour_ + ": " + root.where(field_path_) +
-                         " is neither a numeric dataset nor a time series (step, time, value)");
-      }
-      if (root.has_attr("unit", field_path_)) unit = root.attr_string("unit", field_path_);
-    }
-    const bool scalar = dims.size() == 1 && dims[0] == n;
-    const bool vector = dims.size() == 2 && dims[0] == n && dims[1] == 2;
-    if (!scalar && !vector) {
-      std::string shape;
-      for (auto d : dims) shape += (shape.empty() ? "" : "x") + std::to_string(d);
-      throw UsageError("--colour " + colour_ + ": " + root.where(field_path_) + " has " +
-                       (field_series_ ? "frames of shape [" : "shape [") + shape + "], not one value (or two) per " +
-                       (cells_ ? "cell" : "node") + " (" + std::to_string(n) + ")");
-    }
-    field_components_ = vector ? 2 : 1;
-    field_label_ = (vector ? "|" + leaf + "|" : leaf) + (unit.empty() ? "" : " (" + pretty_unit(unit) + ")");
+    ColourField field = find_colour_field(root, colour_, cells_, run_, n);
+    field_path_ = std::move(field.path);
+    field_label_ = std::move(field.label);
+    field_series_ = field.series;
+    field_components_ = field.components;
+    field_static_ = std::move(field.values);
+    field_info_ = std::move(field.info);
   }
   if (opt_.range) fixed_range_ = opt_.range;
 } catch (const std::bad_alloc&) {
@@ -355,24 +446,7 @@ Figure RunPicture::figure(long long frame) const try {
   // The bodies' colours.
   std::vector<Rgb> fill(n, kPlainFill);
   if (colour_ == "fragment") {
-    const auto& l = *labels_;
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto id = l.cell_fragment[i];
-      const bool single = id >= 0 && static_cast<std::size_t>(id) < l.cell_count.size() && l.cell_count[id] <= 1;
-      fill[i] = single ? kDebrisGrey : category(id);
-    }
-    std::size_t shown = 0;
-    for (std::size_t f = 0; f < l.mass.size() && shown < 12; ++f) {
-      if (l.cell_count[f] <= 1) continue;
-      fig.legend.push_back({category(static_cast<std::int64_t>(f)),
-                            "#" + std::to_string(f) + "  " + sci(l.mass[f]) + " kg, " + std::to_string(l.cell_count[f]) +
-                                " cells"});
-      ++shown;
-    }
-    std::size_t singles = 0;
-    for (auto c : l.cell_count) singles += c <= 1 ? 1 : 0;
-    if (singles) fig.legend.push_back({kDebrisGrey, std::to_string(singles) + " single cells"});
-    fig.legend_title = std::to_string(l.mass.size()) + " fragments (frame " + std::to_string(l.frame) + ")";
+    fill = fragment_fill(*labels_, n, fig);
   } else if (colour_ != "none") {
     const auto v = body_values(d);
     ColourScale scale;
@@ -402,35 +476,10 @@ Figure RunPicture::figure(long long frame) const try {
     for (std::size_t i = 0; i < n; ++i) fig.dots.push_back({at(i), fill[i]});
   }
 
-  // Links: intact ones coloured by strain relative to the threshold, broken ones marked at their middle.
   std::size_t broken = 0;
   if (link_mode_ != LinkMode::off) {
-    ColourScale scale;
-    scale.palette = Palette::coolwarm;
     const double m = threshold_ ? 1.0 : fixed_link_max_ ? *fixed_link_max_ : link_scale_max(d);
-    scale.min = -m;
-    scale.max = m;
-    const double unit = threshold_ ? threshold_->strain : 1.0;
-    const std::string what = cells_ ? "beam" : "bond";
-    scale.label = what + " strain" + (threshold_ ? " / threshold (" + threshold_->label + ")" : " (1)");
-    const bool colour_links = run_ && link_mode_ == LinkMode::strain;
-    for (std::size_t b = 0; b < links_.size(); ++b) {
-      const auto i = static_cast<std::size_t>(links_[b][0]), j = static_cast<std::size_t>(links_[b][1]);
-      const Vec2 a = at(i), c = at(j);
-      if (!d.intact[b]) {
-        fig.markers.push_back(0.5 * (a + c));
-        ++broken;
-      } else if (link_mode_ == LinkMode::strain) {
-        fig.segments.push_back({a, c, colour_links ? scale(d.strain[b] / unit) : kPlainLink});
-      }
-    }
-    if (colour_links) {
-      const bool same = threshold_ && !fig.colour_bars.empty() && fig.colour_bars.back().palette == Palette::coolwarm &&
-                        fig.colour_bars.back().min == scale.min && fig.colour_bars.back().max == scale.max;
-      if (same) fig.colour_bars.back().label = "strain / threshold (" + threshold_->label + ")";
-      else fig.colour_bars.push_back(scale);
-    }
-    fig.marker_colour = link_mode_ == LinkMode::broken ? kBrokenMark : Rgb{0.05, 0.05, 0.05};
+    broken = add_links(fig, links_, d.position, d.intact, d.strain, {link_mode_, run_, cells_, &threshold_, m});
   }
 
   if (opt_.title) {

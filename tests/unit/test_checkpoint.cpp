@@ -16,6 +16,7 @@
 #include "io/output_file.hpp"
 #include "io/run_io.hpp"
 #include "mesh/node_mesh.hpp"
+#include "mesh_test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;

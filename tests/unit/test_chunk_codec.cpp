@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "io/chunk_codec.hpp"
+#include "test_support.hpp"
 
 using namespace frac;
 
@@ -68,14 +69,12 @@ TEST(ChunkCodec, DecodesToTheChunkWithZerosAfterTheData) {
 
 TEST(ChunkCodec, SameStreamOnAnyThreadCountAndSmallerThanTheData) {
   const auto data = sample_doubles(65536);  // 512 KiB: 8 parts
-  const int before = max_threads();
   std::vector<std::vector<unsigned char>> streams;
   for (const int threads : {1, 2, 3}) {
-    set_threads(threads);
+    const test::ThreadCount thread_count(threads);
     const auto s = io::shuffle_deflate(data, 8, data.size());
     streams.emplace_back(s.begin(), s.end());
   }
-  set_threads(before);
   EXPECT_EQ(streams[0], streams[1]);
   EXPECT_EQ(streams[0], streams[2]);
   // The shuffled exponent bytes and the zeros compress (ratio ~1.2 on these values); the noise does not.

@@ -34,6 +34,7 @@
 #include "geometry/overlap.hpp"
 #include "geometry/polygon.hpp"
 #include "mesh/random_lattice.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -462,8 +463,7 @@ TEST(DemContacts, SearchFindsEveryOverlappingPair) {
 // two and three threads. (A rule that let each cell move by the whole skin misses circle pairs here.)
 TEST(DemContacts, NeighbourListKeptAcrossStatesMissesNoPair) {
   for (const int threads : {1, 2, 3}) {
-    const int before = frac::max_threads();
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     Sample s = random_overlaps(4, 0.02);
     const std::size_t n = s.mesh.cells();
     const double g = s.mesh.spacing;
@@ -492,7 +492,6 @@ TEST(DemContacts, NeighbourListKeptAcrossStatesMissesNoPair) {
     }
     // The list was kept between rebuilds (else the test shows nothing).
     EXPECT_LT(search.rebuilds(), states / 2);
-    frac::set_threads(before);
   }
 }
 
@@ -516,7 +515,7 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
     double powers[3][3];
     std::vector<std::array<double, 4>> entries[3];  // each contact's cells, area and normal, in list order
     for (int threads : {1, 2, 3}) {
-      frac::set_threads(threads);
+      const frac::test::ThreadCount thread_count(threads);
       ContactSearch search(s.mesh, bodies);
       ContactList list;
       search.find(s.q, list);
@@ -530,7 +529,6 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
       for (int t = 0; t < 3; ++t) powers[threads - 1][t] = power[static_cast<std::size_t>(t)];
       frac::dem::add_contact_forces(list, n, s.q, f);
     }
-    frac::set_threads(1);
     for (int threads : {2, 3}) {
       const auto u = static_cast<std::size_t>(threads - 1);
       ASSERT_EQ(entries[u], entries[0]) << "seed " << seed << ": the list on " << threads << " threads";

@@ -35,6 +35,7 @@
 #include "dem/timestep.hpp"
 #include "dynamics/integrator.hpp"
 #include "mesh/random_lattice.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -842,9 +843,8 @@ namespace {
 TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
   const CellMesh mesh = disc_mesh(400, 3);
   const std::size_t n = mesh.cells(), bad = n / 2;
-  const int before = frac::max_threads();
   for (const int threads : {1, 2}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     Material mat;
     mat.gamma_n = 1000;
     Physics ph;
@@ -884,7 +884,6 @@ TEST(DemModel, NonFiniteForceIsTracedToItsTerm) {
       EXPECT_TRUE(touching) << "cell " << cell;
     }
   }
-  frac::set_threads(before);
 }
 
 // A disc of 400 cells (above the size where a force evaluation runs on the threads) squeezed by 1 % about the
@@ -925,9 +924,8 @@ TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
   std::vector<double> q_moved = q;
   for (std::size_t k = 0; k < 3 * n; ++k) q_moved[k] += 0.2 * kG * v[k];  // past half the skin: a rebuild
   const std::vector<double>& moved = q_moved;
-  const int before = frac::max_threads();
   for (const int threads : {1, 2, 3}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     Model model(mesh, mat, ph);
     // The terms one by one: a search of its own that sees the same states (it keeps what it learnt from one
     // to the next, as the model's does: the clip order of an irregular overlap changes it at round-off).
@@ -964,7 +962,6 @@ TEST(DemModel, OneTeamEvaluationEqualsTheTermsOneByOneOnAnyThreadCount) {
     }
     EXPECT_EQ(search.rebuilds(), 2);
   }
-  frac::set_threads(before);
 }
 
 // The mesh's reference state with each centroid moved by up to `shift` in x and y and each cell turned by up to
@@ -1043,9 +1040,8 @@ TEST(DemModel, BreakingPassGivesTheExactRuleOfEveryBeam) {
   const Material mat;
   // Strains of neighbours up to ~±5 % (t_ε = 3 %), end rotations up to ~±0.1 rad (t_Θ = 0.07), a few far.
   const std::vector<double> q = jittered_state(mesh, 21, 0.02 * kG, 0.05, 11);
-  const int before = frac::max_threads();
   for (const int threads : {1, 2}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     frac::dem::Beams beams(mesh, mat);
     for (std::size_t b = 3; b < beams.size(); b += 9) beams.remove(b);
     std::vector<frac::dem::BeamBreak> expected;
@@ -1072,7 +1068,6 @@ TEST(DemModel, BreakingPassGivesTheExactRuleOfEveryBeam) {
     beams.break_beams(q, mat.t_eps, mat.t_theta, broken);
     EXPECT_EQ(broken.size(), expected.size());
   }
-  frac::set_threads(before);
 }
 
 // Beams that break stay in the active list, marked broken, until enough have gathered (Beams::kCompactEvery):
@@ -1083,9 +1078,8 @@ TEST(DemModel, BrokenBeamsWaitingForCompactionCarryNothing) {
   const Material mat;
   const std::size_t n = mesh.cells();
   const std::vector<double> rest = jittered_state(mesh, 5, 0.002 * kG, 0.005, n + 1);  // nothing breaks here
-  const int before = frac::max_threads();
   for (const int threads : {1, 2}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     frac::dem::Beams beams(mesh, mat);
     const std::size_t all = beams.intact_count();
     std::vector<frac::dem::BeamBreak> broken;
@@ -1119,7 +1113,6 @@ TEST(DemModel, BrokenBeamsWaitingForCompactionCarryNothing) {
     intact_beam_forces(mesh, beams, rest, energy);
     EXPECT_NEAR(beams.energy(rest), energy, 1e-12 * energy) << threads << " threads";
   }
-  frac::set_threads(before);
 }
 
 // Each beam's constants and strain stay its own wherever it is kept: intact, broken and waiting in the active

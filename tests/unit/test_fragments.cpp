@@ -16,6 +16,7 @@
 #include "analysis/fragments.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
+#include "mesh_test_support.hpp"
 #include "test_support.hpp"
 #include "core/rng.hpp"
 #include "analysis/fragments_io.hpp"

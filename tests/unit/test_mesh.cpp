@@ -738,7 +738,7 @@ TEST(CellOverlaps, CentroidsOfAnyFiniteValueAreSafe) {
 }
 
 // Not a test: time make_random_lattice (and the check) for 10^4, 10^5, 10^6 cells. Run with
-//   unit_tests --gtest_also_run_disabled_tests --gtest_filter='*RandomLatticeTiming*'
+//   unit_mesh --gtest_also_run_disabled_tests --gtest_filter='*RandomLatticeTiming*'
 TEST(RandomLattice, DISABLED_RandomLatticeTiming) {
   for (const std::int64_t n : {100, 316, 1000}) {
     const auto t0 = std::chrono::steady_clock::now();

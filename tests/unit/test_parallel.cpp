@@ -14,6 +14,7 @@
 #include "core/finite.hpp"
 #include "core/float_mode.hpp"
 #include "core/parallel.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -22,9 +23,8 @@ namespace {
 // After set_threads, every thread of the team flushes subnormal results and operands to zero (the simulation's
 // floating-point mode, core/float_mode.hpp), and normal numbers are untouched.
 TEST(Parallel, ThreadsFlushSubnormalsToZero) {
-  const int before = frac::max_threads();
   for (const int threads : {1, 2, 3}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     std::vector<double> product(static_cast<std::size_t>(threads), -1), sum(product), normal(product);
     volatile double tiny = 1e-300, scale = 1e-10, subnormal = 4.9e-324, one = 1.0;  // (not folded at compile time)
     frac::as_team(true, [&] {  // (on the thread team: each of its threads)
@@ -41,7 +41,6 @@ TEST(Parallel, ThreadsFlushSubnormalsToZero) {
       EXPECT_EQ(std::bit_cast<std::uint64_t>(normal[t]), std::bit_cast<std::uint64_t>(1e-300)) << t;
     }
   }
-  frac::set_threads(before);
 }
 
 TEST(Parallel, StaticRangeMatchesOpenMPStaticSchedule) {
@@ -66,9 +65,8 @@ TEST(Parallel, StaticRangeMatchesOpenMPStaticSchedule) {
 
 // Every coordinate is visited once, and on two threads each thread takes the same cells in every block.
 TEST(Parallel, CoordinateRangesCoverEveryCoordinateOnceAlignedWithTheCells) {
-  const int before = frac::max_threads();
   for (const int threads : {1, 2, 3}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     for (const std::size_t cells : {5u, 1100u, 1103u, 4000u}) {
       for (const std::size_t blocks : {1u, 3u}) {
         const std::size_t n = cells * blocks;
@@ -86,7 +84,6 @@ TEST(Parallel, CoordinateRangesCoverEveryCoordinateOnceAlignedWithTheCells) {
       }
     }
   }
-  frac::set_threads(before);
 }
 
 // PartLayout: every coordinate is visited once, at the entry index() gives, distinct entries inside size(); in a
@@ -133,9 +130,8 @@ TEST(Parallel, PartLayoutKeepsTheThreadsPartsApart) {
 
 // A single NaN or infinity anywhere, in any block, on any thread count, is found.
 TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
-  const int before = frac::max_threads();
   for (const int threads : {1, 2}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     for (const std::size_t n : {7u, 3300u, 3309u}) {
       std::vector<double> x(n, 1e300), y(n, -1e300);
       EXPECT_TRUE(frac::all_finite(x, 3)) << n;
@@ -152,7 +148,6 @@ TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
       }
     }
   }
-  frac::set_threads(before);
 }
 
 // The test in passing (non_finite_bit, OR-ed over a loop): only NaN and ±inf set the top bit, whatever the values
@@ -178,9 +173,8 @@ TEST(Parallel, NonFiniteBitMarksOnlyNaNAndInfinity) {
 // team_barrier in as_team's regions and in other OpenMP regions: after the k-th barrier every thread sees what
 // every other wrote before it.
 TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
-  const int before = frac::max_threads();
   for (const int threads : {2, 3}) {
-    frac::set_threads(threads);
+    const frac::test::ThreadCount thread_count(threads);
     std::vector<int> value(static_cast<std::size_t>(threads), 0);
     int wrong = 0;
     auto body = [&] {
@@ -206,7 +200,6 @@ TEST(Parallel, TeamBarrierInAsTeamAndInOtherRegions) {
     EXPECT_EQ(wrong, 0) << threads << " threads, an OpenMP region";
     frac::team_barrier();  // (outside any region: nothing to wait for)
   }
-  frac::set_threads(before);
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
 #pragma once
-// What several unit tests share: a fresh folder for a test's files, and small meshes.
+// What several unit tests share: a fresh folder for a test's files, and a thread count for a scope. Of the core
+// layer only, so that the tests of every layer may include it (small meshes: mesh_test_support.hpp).
 #include <filesystem>
 #include <string>
 
+#include "core/parallel.hpp"
 #include "core/provenance.hpp"
-#include "mesh/node_mesh.hpp"
 
 namespace frac::test {
 
@@ -16,15 +17,23 @@ inline std::filesystem::path temp_dir(const std::string& name) {
   return dir;
 }
 
-// Two nodes 1 m apart joined by one intact bond (a 2 × 1 lattice).
-inline mesh::NodeMesh two_node_mesh() {
-  mesh::NodeMesh m;
-  m.position = {mesh::Vec2(0, 0), mesh::Vec2(1, 0)};
-  m.bond = {{0, 1}};
-  m.bond_length = {1.0};
-  m.intact = {1};
-  m.nx = 2, m.ny = 1, m.spacing = 1.0;
-  return m;
-}
+// The thread count of the force loops' teams (frac::set_threads: `threads`, or every core for 0) while the guard
+// lives, and the count before it back when it goes, however the scope is left (an ASSERT_ or GTEST_SKIP returns
+// from the test early): one test's count does not leak into the tests after it in the same process.
+//   for (const int threads : {1, 2, 3}) {
+//     const test::ThreadCount thread_count(threads);
+//     ...
+//   }
+// (set_threads also puts the threads in the simulation's floating-point mode, core/float_mode.hpp: that stays.)
+class ThreadCount {
+ public:
+  explicit ThreadCount(int threads) : before_(max_threads()) { set_threads(threads); }
+  ~ThreadCount() { set_threads(before_); }
+  ThreadCount(const ThreadCount&) = delete;
+  ThreadCount& operator=(const ThreadCount&) = delete;
+
+ private:
+  int before_;
+};
 
 }  // namespace frac::test
