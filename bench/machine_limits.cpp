@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
   std::printf("threads %d\n", std::max(1, threads));
   std::printf("stream_triad_GB_per_s %.2f\n", triad_bandwidth(std::size_t{1} << 25, 10) / 1e9);
   std::printf("flops_sse2_GFLOP_per_s %.2f\n", flop_rate(50'000'000, chains_sse2) / 1e9);
-  if (__builtin_cpu_supports("avx2")) std::printf("flops_avx2_GFLOP_per_s %.2f\n", flop_rate(50'000'000, chains_avx2) / 1e9);
+  if (__builtin_cpu_supports("avx2"))
+    std::printf("flops_avx2_GFLOP_per_s %.2f\n", flop_rate(50'000'000, chains_avx2) / 1e9);
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
     std::printf("flops_avx2_fma_GFLOP_per_s %.2f\n", flop_rate(50'000'000, chains_fma) / 1e9);
 }

@@ -131,8 +131,9 @@ int main(int argc, char** argv) {
     };
     const double clip = time_ns(false, all), from_lines = time_ns(true, all);
     const double regular_ns = time_ns(true, regular), other_ns = time_ns(true, other);
-    std::printf("| pairs clipped | overlapping | from cached lines | clipping, ns per pair | cached lines, ns per pair "
-                "| ratio | kept lines, ns | the others, ns |\n");
+    std::printf(
+        "| pairs clipped | overlapping | from cached lines | clipping, ns per pair | cached lines, ns per pair "
+        "| ratio | kept lines, ns | the others, ns |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
     std::printf("| %zu | %zu | %.1f %% | %.1f | %.1f | %.2f | %.1f | %.1f |\n", pairs.size(), overlapping,
                 100.0 * static_cast<double>(cached) / static_cast<double>(pairs.size()), clip, from_lines,

@@ -41,11 +41,11 @@ int main(int argc, char** argv) {
     dem::Simulation sim(mesh, resolved);
 
     Progress progress("dem-run", args.common.quiet);
-    const dem::RunSummary s =
-        dem::run_to_file(sim, scene, cli::scene_run("dem-run", args, scene), in, args.common.output,
-                         args.checkpoint, progress);
+    const dem::RunSummary s = dem::run_to_file(sim, scene, cli::scene_run("dem-run", args, scene), in,
+                                               args.common.output, args.checkpoint, progress);
     progress.finish(dem::summary_line(s, sim));
-    if (args.profile) write_phase_table(std::cerr, "dem-run: phases of " + std::to_string(s.steps) + " steps", s.phases);
+    if (args.profile)
+      write_phase_table(std::cerr, "dem-run: phases of " + std::to_string(s.steps) + " steps", s.phases);
     return kExitOk;
   });
 }

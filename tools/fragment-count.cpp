@@ -8,11 +8,11 @@
 #include <sstream>
 
 #include "analysis/fragments.hpp"
+#include "analysis/fragments_io.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/file_roles.hpp"
 #include "core/provenance.hpp"
-#include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -70,16 +70,15 @@ int run(int argc, const char* const* argv) {
       "  dem-run --scene explosion.ini disc.h5 | fragment-count - | powerlaw-fit - --format text"};
   Options o;
   po::options_description desc("Options");
-  desc.add_options()
-      ("input", po::value(&o.input)->required(), "run file, or - for standard input")
-      ("frame", po::value(&o.frame), "frame index; negative counts from the end (-1: the final state, the default)")
-      ("time", po::value(&o.time), "use the frame whose time is closest to T (s)")
-      ("min-cells", po::value(&o.min_cells)->default_value(1),
-       "smallest fragment (in cells) counted in the histogram, the time series and the fit selection; "
-       "2 leaves single cells out")
-      ("bins-per-decade", po::value(&o.bins_per_decade)->default_value(5), "bins per decade of the mass histogram")
-      ("time-series", po::bool_switch(&o.time_series),
-       "also count the fragments and the largest fragment's mass in every frame of the run");
+  desc.add_options()("input", po::value(&o.input)->required(), "run file, or - for standard input")(
+      "frame", po::value(&o.frame), "frame index; negative counts from the end (-1: the final state, the default)")(
+      "time", po::value(&o.time), "use the frame whose time is closest to T (s)")(
+      "min-cells", po::value(&o.min_cells)->default_value(1),
+      "smallest fragment (in cells) counted in the histogram, the time series and the fit selection; "
+      "2 leaves single cells out")("bins-per-decade", po::value(&o.bins_per_decade)->default_value(5),
+                                   "bins per decade of the mass histogram")(
+      "time-series", po::bool_switch(&o.time_series),
+      "also count the fragments and the largest fragment's mass in every frame of the run");
   cli::add_common(desc, o.common, cli::kOutput | cli::kQuiet | cli::kConfig);
   po::positional_options_description positional;
   positional.add("input", 1);
@@ -90,7 +89,8 @@ int run(int argc, const char* const* argv) {
   if (o.by_time && !std::isfinite(o.time)) throw UsageError("--time: must be a finite number of seconds");
   if (o.min_cells < 1) throw UsageError("--min-cells: must be at least 1, got " + std::to_string(o.min_cells));
   if (!(o.bins_per_decade > 0 && o.bins_per_decade <= 1000))
-    throw UsageError("--bins-per-decade: must be in (0, 1000], got " + (std::ostringstream() << o.bins_per_decade).str());
+    throw UsageError("--bins-per-decade: must be in (0, 1000], got " +
+                     (std::ostringstream() << o.bins_per_decade).str());
   check_file_roles({{"RUN", o.input}, {"--config", o.common.config}}, {{"-o", o.common.output}});
 
   const io::Group root = io::open_input(o.input);

@@ -7,8 +7,8 @@
 #include "core/error.hpp"
 #include "core/file_roles.hpp"
 #include "core/provenance.hpp"
-#include "io/header.hpp"
 #include "io/hdf5.hpp"
+#include "io/header.hpp"
 #include "io/xdmf.hpp"
 #include "render/run_picture.hpp"
 
@@ -24,7 +24,8 @@ int run(int argc, char** argv) {
       "node with every per-body dataset and time series as attributes, the beams or bonds as two-point "
       "polylines with their strain and intact flags; a run becomes a temporal collection, one grid per "
       "trajectory frame, referring to slabs of the HDF5 datasets in place. Open the .xmf in ParaView "
-      "(Xdmf3 Reader S or T), or write --flavour xdmf2 for VisIt and ParaView's legacy XDMF Reader. The sidecar names the HDF5 file by its path relative to the sidecar: keep them "
+      "(Xdmf3 Reader S or T), or write --flavour xdmf2 for VisIt and ParaView's legacy XDMF Reader. The sidecar names "
+      "the HDF5 file by its path relative to the sidecar: keep them "
       "together. See docs/xdmf.md.",
       "  h5-xdmf explosion.h5                     # writes explosion.xmf\n"
       "  h5-xdmf explosion.h5 --fragments fragments.h5 -o explosion-fragments.xmf\n"
@@ -34,33 +35,43 @@ int run(int argc, char** argv) {
   std::string input, output, fragments, polygons, flavour;
   std::size_t limit = 500000;  // (negative values refused by cli::parse, as for every unsigned option)
   po::options_description desc("Options");
-  desc.add_options()
-      ("input", po::value(&input)->required(), "mesh or run file (a named file: the sidecar refers to it)")
-      ("output,o", po::value(&output), "sidecar to write (default: the input with extension .xmf; - for standard "
-       "output)")
-      ("fragments", po::value(&fragments), "fragments file of this run: adds the cell attribute 'fragment'")
-      ("polygons", po::value(&polygons)->default_value("auto"), "write the reference polygons inline: auto (up to "
-       "--polygon-limit vertices), on, off")
-      ("polygon-limit", po::value(&limit)->default_value(limit), "vertices up to which --polygons auto writes them")
-      ("flavour", po::value(&flavour)->default_value("xdmf3"), "how frames are referenced: xdmf3 (ParaView's Xdmf3 "
-       "readers) or xdmf2 (HyperSlab DataItems: VisIt, ParaView's legacy XDMF Reader)");
+  desc.add_options()("input", po::value(&input)->required(),
+                     "mesh or run file (a named file: the sidecar refers to it)")(
+      "output,o", po::value(&output),
+      "sidecar to write (default: the input with extension .xmf; - for standard "
+      "output)")("fragments", po::value(&fragments), "fragments file of this run: adds the cell attribute 'fragment'")(
+      "polygons", po::value(&polygons)->default_value("auto"),
+      "write the reference polygons inline: auto (up to "
+      "--polygon-limit vertices), on, off")("polygon-limit", po::value(&limit)->default_value(limit),
+                                            "vertices up to which --polygons auto writes them")(
+      "flavour", po::value(&flavour)->default_value("xdmf3"),
+      "how frames are referenced: xdmf3 (ParaView's Xdmf3 "
+      "readers) or xdmf2 (HyperSlab DataItems: VisIt, ParaView's legacy XDMF Reader)");
   cli::add_common(desc, common, cli::kQuiet | cli::kConfig);
   po::positional_options_description positional;
   positional.add("input", 1);
   cli::parse(argc, argv, spec, desc, positional);
 
   if (input == "-")
-    throw UsageError("h5-xdmf reads a named file, not standard input: the sidecar refers to the file's datasets by "
-                     "its name");
+    throw UsageError(
+        "h5-xdmf reads a named file, not standard input: the sidecar refers to the file's datasets by "
+        "its name");
   io::XdmfOptions opt;
-  if (polygons == "auto") opt.polygons = io::XdmfPolygons::automatic;
-  else if (polygons == "on") opt.polygons = io::XdmfPolygons::on;
-  else if (polygons == "off") opt.polygons = io::XdmfPolygons::off;
-  else throw UsageError("--polygons: unknown value '" + polygons + "' (auto, on or off)");
+  if (polygons == "auto")
+    opt.polygons = io::XdmfPolygons::automatic;
+  else if (polygons == "on")
+    opt.polygons = io::XdmfPolygons::on;
+  else if (polygons == "off")
+    opt.polygons = io::XdmfPolygons::off;
+  else
+    throw UsageError("--polygons: unknown value '" + polygons + "' (auto, on or off)");
   opt.inline_vertex_limit = limit;
-  if (flavour == "xdmf3") opt.flavour = io::XdmfFlavour::xdmf3;
-  else if (flavour == "xdmf2") opt.flavour = io::XdmfFlavour::xdmf2;
-  else throw UsageError("--flavour: unknown value '" + flavour + "' (xdmf3 or xdmf2)");
+  if (flavour == "xdmf3")
+    opt.flavour = io::XdmfFlavour::xdmf3;
+  else if (flavour == "xdmf2")
+    opt.flavour = io::XdmfFlavour::xdmf2;
+  else
+    throw UsageError("--flavour: unknown value '" + flavour + "' (xdmf3 or xdmf2)");
   if (output.empty()) output = std::filesystem::path(input).replace_extension(".xmf").string();
   check_file_roles({{"FILE", input}, {"--fragments", fragments}, {"--config", common.config}}, {{"-o", output}});
 
@@ -85,11 +96,12 @@ int run(int argc, char** argv) {
   io::write_text_file(output, text);
   if (!common.quiet) {
     for (const auto& note : report.notes) std::cerr << "h5-xdmf: note: " << note << "\n";
-    std::cerr << "h5-xdmf: wrote " << (output == "-" ? std::string("standard output") : output) << ": "
-              << report.bodies << " bodies, " << report.links << " links, "
+    std::cerr << "h5-xdmf: wrote " << (output == "-" ? std::string("standard output") : output) << ": " << report.bodies
+              << " bodies, " << report.links << " links, "
               << (report.frames ? std::to_string(report.frames) + " frames" : std::string("no frames (mesh)"))
-              << (report.polygon_vertices ? ", polygons inline (" + std::to_string(report.polygon_vertices) + " vertices)"
-                                          : std::string())
+              << (report.polygon_vertices
+                      ? ", polygons inline (" + std::to_string(report.polygon_vertices) + " vertices)"
+                      : std::string())
               << "\n";
   }
   return kExitOk;

@@ -29,8 +29,10 @@ void write_mesh_file(const Mesh& m, const ToolRun& run, const cli::CommonOptions
   out.commit();
   if (!common.quiet) {
     const auto report = [&] {
-      if constexpr (std::is_same_v<Mesh, mesh::CellMesh>) return mesh::check_cell_mesh(m);
-      else return mesh::check_node_mesh(m);
+      if constexpr (std::is_same_v<Mesh, mesh::CellMesh>)
+        return mesh::check_cell_mesh(m);
+      else
+        return mesh::check_node_mesh(m);
     }();
     std::cerr << "mesh-gen: wrote " << (common.output == "-" ? "standard output" : common.output) << "\n"
               << report.summary;
@@ -38,26 +40,26 @@ void write_mesh_file(const Mesh& m, const ToolRun& run, const cli::CommonOptions
 }
 
 int voronoi(int argc, const char* const* argv, const std::string& command_line) {
-  const cli::ToolSpec spec{"mesh-gen voronoi", "[options]",
-                           "Cuts a rectangle or a disc into the Voronoi polygons of a vectorizable random lattice "
-                           "(one site per grid cell, thrown in a square of side disorder*g around the cell centre) "
-                           "and joins every pair of cells sharing a side by a beam. Lengths in metres.",
-                           "  mesh-gen voronoi --shape rect --size 0.40x0.20 --cells 40x20 --disorder 1 --seed 7 -o block.h5\n"
-                           "  mesh-gen voronoi --shape disc --diameter 0.40 --cells 1100 --seed 7 -o disc.h5"};
+  const cli::ToolSpec spec{
+      "mesh-gen voronoi", "[options]",
+      "Cuts a rectangle or a disc into the Voronoi polygons of a vectorizable random lattice "
+      "(one site per grid cell, thrown in a square of side disorder*g around the cell centre) "
+      "and joins every pair of cells sharing a side by a beam. Lengths in metres.",
+      "  mesh-gen voronoi --shape rect --size 0.40x0.20 --cells 40x20 --disorder 1 --seed 7 -o block.h5\n"
+      "  mesh-gen voronoi --shape disc --diameter 0.40 --cells 1100 --seed 7 -o disc.h5"};
   cli::CommonOptions common;
   mesh::RandomLatticeOptions opt;
   std::string size = "0.40x0.20", cells;
   po::options_description desc("Options");
-  desc.add_options()
-      ("shape", po::value(&opt.shape)->default_value("rect"), "rect or disc")
-      ("size", po::value(&size)->default_value(size), "rect: width x height in m, e.g. 0.40x0.20")
-      ("diameter", po::value(&opt.diameter)->default_value(0.40), "disc: diameter in m")
-      ("cells", po::value(&cells)->required(), "rect: grid cells NXxNY (e.g. 40x20); disc: approximate number of cells")
-      ("disorder", po::value(&opt.disorder)->default_value(1.0), "disorder a/g in [0,1]; 0 gives the square grid")
-      ("disorder-region", po::value(&opt.disorder_region)->default_value("square"),
-       "region the site is thrown in: square (side a) or disc (radius a)")
-      ("min-section", po::value(&opt.min_section)->default_value(1e-6),
-       "drop beams whose shared side is below this fraction of the spacing");
+  desc.add_options()("shape", po::value(&opt.shape)->default_value("rect"), "rect or disc")(
+      "size", po::value(&size)->default_value(size), "rect: width x height in m, e.g. 0.40x0.20")(
+      "diameter", po::value(&opt.diameter)->default_value(0.40), "disc: diameter in m")(
+      "cells", po::value(&cells)->required(), "rect: grid cells NXxNY (e.g. 40x20); disc: approximate number of cells")(
+      "disorder", po::value(&opt.disorder)->default_value(1.0), "disorder a/g in [0,1]; 0 gives the square grid")(
+      "disorder-region", po::value(&opt.disorder_region)->default_value("square"),
+      "region the site is thrown in: square (side a) or disc (radius a)")(
+      "min-section", po::value(&opt.min_section)->default_value(1e-6),
+      "drop beams whose shared side is below this fraction of the spacing");
   cli::add_common(desc, common, cli::kOutput | cli::kSeed | cli::kQuiet | cli::kConfig);
   const auto vm = cli::parse(argc, argv, spec, desc);
   check_file_roles({{"--config", common.config}}, {{"-o", common.output}});
@@ -96,11 +98,10 @@ int triangular(int argc, const char* const* argv, const std::string& command_lin
   mesh::TriangularLatticeOptions opt;
   std::string nodes;
   po::options_description desc("Options");
-  desc.add_options()
-      ("nodes", po::value(&nodes)->required(), "nodes along x and y, NXxNY")
-      ("spacing", po::value(&opt.spacing)->required(), "lattice spacing Delta in m")
-      ("rows-along", po::value(&opt.rows_along)->default_value("x"), "close-packed rows along x or y")
-      ("notch", po::value(&opt.notch)->default_value(0.0), "length in m of the cut from the left edge (0: none)");
+  desc.add_options()("nodes", po::value(&nodes)->required(), "nodes along x and y, NXxNY")(
+      "spacing", po::value(&opt.spacing)->required(), "lattice spacing Delta in m")(
+      "rows-along", po::value(&opt.rows_along)->default_value("x"), "close-packed rows along x or y")(
+      "notch", po::value(&opt.notch)->default_value(0.0), "length in m of the cut from the left edge (0: none)");
   cli::add_common(desc, common, cli::kOutput | cli::kQuiet | cli::kConfig);
   const auto vm = cli::parse(argc, argv, spec, desc);
   check_file_roles({{"--config", common.config}}, {{"-o", common.output}});
@@ -132,8 +133,9 @@ int check(int argc, const char* const* argv, const std::string&) {
 
   const io::Group root = io::open_input(input);
   io::check_header(root, {"mesh", "run"});
-  const auto report = io::mesh_kind(root) == io::MeshKind::cells ? mesh::check_cell_mesh(io::read_cell_mesh_as_stored(root))
-                                                                 : mesh::check_node_mesh(io::read_node_mesh_as_stored(root));
+  const auto report = io::mesh_kind(root) == io::MeshKind::cells
+                          ? mesh::check_cell_mesh(io::read_cell_mesh_as_stored(root))
+                          : mesh::check_node_mesh(io::read_node_mesh_as_stored(root));
   if (!common.quiet) std::cout << input << "\n" << report.summary;
   if (!report.ok()) {
     for (const auto& f : report.failures) std::cerr << "mesh-gen check: " << input << ": " << f << "\n";

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
         "prints `key value` lines: slope, slope_stderr, intercept, points (the elastic moduli: --fit "
         "stress:axial_strain gives K; --fit lateral_strain:axial_strain gives −ν). With --crack-shape (a rubber-run "
         "crack run), measures the crack in one frame and prints `key value` lines: the tip, the angle of the front "
-        "behind which the sheet unloads (the wedge), how far it trails the tip, broken bonds, the grips. The `key value` "
+        "behind which the sheet unloads (the wedge), how far it trails the tip, broken bonds, the grips. The `key "
+        "value` "
         "outputs start with the same '#' provenance line.",
         "  observables run.h5 --columns stress,axial_strain > curve.csv\n"
         "  observables run.h5 --fit stress:axial_strain --where 'axial_strain>0' --after 2e-3\n"
@@ -40,8 +41,8 @@ int main(int argc, char** argv) {
     desc.add_options()("input", po::value(&input)->required(), "run file, or - for standard input")(
         "columns", po::value(&columns), "comma-separated observable names (default: every scalar one)")(
         "fit", po::value(&fit), "Y:X, fit Y against X")(
-        "where", po::value(&where), "select samples: NAME>VALUE or NAME<VALUE")(
-        "after", po::value(&after), "select samples at time > T (s)")(
+        "where", po::value(&where), "select samples: NAME>VALUE or NAME<VALUE")("after", po::value(&after),
+                                                                                "select samples at time > T (s)")(
         "parameter", po::value(&parameter), "print the value of a resolved parameter of the run (e.g. derived.dt)")(
         "compare", po::value(&compare),
         "REFERENCE.h5: print the rms and largest distance between the final positions of the two runs (same mesh)")(
@@ -87,8 +88,8 @@ int main(int argc, char** argv) {
     const auto colon = fit.find(':');
     if (colon == std::string::npos) throw UsageError("--fit: expected Y:X, got '" + fit + "'");
     const auto selection = analysis::select_rows(table, where, after, input);
-    const analysis::LineFit f = analysis::fit_columns(table, fit.substr(0, colon), fit.substr(colon + 1), selection,
-                                                      input);
+    const analysis::LineFit f =
+        analysis::fit_columns(table, fit.substr(0, colon), fit.substr(colon + 1), selection, input);
     std::cout << provenance() << std::setprecision(10) << "slope " << f.slope << "\nslope_stderr " << f.slope_stderr
               << "\nintercept " << f.intercept << "\npoints " << f.points << "\n";
     return kExitOk;

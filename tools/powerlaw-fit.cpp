@@ -8,13 +8,13 @@
 #include <limits>
 #include <sstream>
 
+#include "analysis/fit_io.hpp"
 #include "analysis/powerlaw.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
-#include "core/option_check.hpp"
 #include "core/file_roles.hpp"
+#include "core/option_check.hpp"
 #include "core/provenance.hpp"
-#include "analysis/fit_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -65,73 +65,73 @@ struct Options {
 };
 
 cli::ToolSpec tool_spec() {
-  return {
-      "powerlaw-fit", "[options] INPUT|-",
-      "Fits p(x) ~ x^-alpha for x >= xmin to fragment masses (a 'fragments' HDF5 file: /fragments/mass, or "
-      "cell_count) or to a plain column of numbers (text, '#' comments allowed), and reports every estimator "
-      "side by side: continuous_mle and, for integer data, discrete_mle (maximum likelihood, xmin by minimum "
-      "KS distance, asymptotic error (alpha-1)/sqrt(n_tail), bootstrap error including xmin, goodness-of-fit "
-      "p by the semi-parametric bootstrap; p <= 0.1 rejects the power law), likelihood-ratio tests of the "
-      "primary fit against exponential, lognormal (Vuong) and power law with exponential cutoff (nested; "
-      "'lr_<alt> R p': R > 0 favours the power law), and the weighted least-squares slope of the log-binned "
-      "density histogram (biased; for comparison). alpha is the exponent of the DENSITY: for fragment masses "
-      "F(m) ~ m^-beta, beta = alpha; the CCDF N(>m) falls as m^-(alpha-1). Values that are NaN, infinite, "
-      "zero or negative, fewer than 10 values or fewer than 3 distinct ones are refused (exit 2). Output: the "
-      "/fit group of an HDF5 file of kind 'fit', or with --format text 'key value' lines (unprefixed keys are "
-      "the primary estimator; continuous_*, discrete_*, logbin_* the others; every key in docs/powerlaw-fit.md). "
-      "With several inputs, both exponents are also fitted to each input alone (mean and standard error over "
-      "inputs) and to the pool with each input left out (jackknife error). Fragment masses cluster near whole "
-      "numbers of cells: the histogram's edges fall halfway between them (--cell-mass).",
-      "  powerlaw-fit fragments.h5 -o fit.h5\n"
-      "  powerlaw-fit fragments.h5 --column cell_count --min-cells 2 --format text\n"
-      "  powerlaw-fit frag-s1.h5 frag-s2.h5 frag-s3.h5 --logbin-min 2cells --logbin-max 25cells --format text\n"
-      "  fragment-count run.h5 | powerlaw-fit - --format text --bootstrap 500 --gof-samples 1000\n"
-      "  powerlaw-fit values.txt --format text | awk '$1 == \"alpha\" {print $2}'"};
+  return {"powerlaw-fit", "[options] INPUT|-",
+          "Fits p(x) ~ x^-alpha for x >= xmin to fragment masses (a 'fragments' HDF5 file: /fragments/mass, or "
+          "cell_count) or to a plain column of numbers (text, '#' comments allowed), and reports every estimator "
+          "side by side: continuous_mle and, for integer data, discrete_mle (maximum likelihood, xmin by minimum "
+          "KS distance, asymptotic error (alpha-1)/sqrt(n_tail), bootstrap error including xmin, goodness-of-fit "
+          "p by the semi-parametric bootstrap; p <= 0.1 rejects the power law), likelihood-ratio tests of the "
+          "primary fit against exponential, lognormal (Vuong) and power law with exponential cutoff (nested; "
+          "'lr_<alt> R p': R > 0 favours the power law), and the weighted least-squares slope of the log-binned "
+          "density histogram (biased; for comparison). alpha is the exponent of the DENSITY: for fragment masses "
+          "F(m) ~ m^-beta, beta = alpha; the CCDF N(>m) falls as m^-(alpha-1). Values that are NaN, infinite, "
+          "zero or negative, fewer than 10 values or fewer than 3 distinct ones are refused (exit 2). Output: the "
+          "/fit group of an HDF5 file of kind 'fit', or with --format text 'key value' lines (unprefixed keys are "
+          "the primary estimator; continuous_*, discrete_*, logbin_* the others; every key in docs/powerlaw-fit.md). "
+          "With several inputs, both exponents are also fitted to each input alone (mean and standard error over "
+          "inputs) and to the pool with each input left out (jackknife error). Fragment masses cluster near whole "
+          "numbers of cells: the histogram's edges fall halfway between them (--cell-mass).",
+          "  powerlaw-fit fragments.h5 -o fit.h5\n"
+          "  powerlaw-fit fragments.h5 --column cell_count --min-cells 2 --format text\n"
+          "  powerlaw-fit frag-s1.h5 frag-s2.h5 frag-s3.h5 --logbin-min 2cells --logbin-max 25cells --format text\n"
+          "  fragment-count run.h5 | powerlaw-fit - --format text --bootstrap 500 --gof-samples 1000\n"
+          "  powerlaw-fit values.txt --format text | awk '$1 == \"alpha\" {print $2}'"};
 }
 
 void parse_options(int argc, char** argv, Options& o) {
   po::options_description desc("Options");
-  desc.add_options()
-      ("input", po::value(&o.inputs)->required()->multitoken(),
-       "fragments files or text columns ('-' reads standard input); several are pooled into one sample "
-       "(e.g. the runs of several seeds)")
-      ("input-format", po::value(&o.input_format)->default_value(o.input_format),
-       "auto (HDF5 when the input starts with the HDF5 signature, else text), hdf5 or text")
-      ("format", po::value(&o.format)->default_value(o.format), "output: hdf5 (the /fit group) or text (key value lines)")
-      ("column", po::value(&o.column)->default_value(o.column),
-       "fragments file: mass (continuous primary) or cell_count (integers: discrete primary)")
-      ("min-cells", po::value(&o.min_cells_text)->default_value(o.min_cells_text),
-       "fragments file: fit only fragments of at least N cells; 'file' takes the file's own min_cells "
-       "attribute (fragment-count --min-cells; none: all fragments). The number left out is reported")
-      ("model", po::value(&o.opt.model)->default_value(o.opt.model),
-       "primary estimator: auto (discrete for integer data), continuous or discrete")
-      ("xmin", po::value(&o.xmin_text), "fix the lower cutoff instead of scanning for it")
-      ("xmax", po::value(&o.xmax_text),
-       "upper cutoff: values above it are left out (and counted) and the power law is truncated there")
-      ("min-tail", po::value(&o.opt.scan.min_tail)->default_value(o.opt.scan.min_tail),
-       "xmin candidates must leave at least N values in the tail")
-      ("ks", po::value(&o.ks)->default_value(o.ks),
-       "KS distance of continuous fits: two-sided (sup|S-P|, CSN) or powerlaw-r (as R poweRlaw)")
-      ("bootstrap", po::value(&o.opt.bootstrap)->default_value(o.opt.bootstrap),
-       "non-parametric bootstrap resamples for the uncertainty of alpha and xmin (0: none)")
-      ("gof-samples", po::value(&o.opt.gof_samples)->default_value(o.opt.gof_samples),
-       "synthetic sets for the goodness-of-fit p-value (0: none; 2500 gives p to +-0.01)")
-      ("no-compare", po::bool_switch(&o.no_compare), "skip the likelihood-ratio tests")
-      ("significance", po::value(&o.opt.significance)->default_value(o.opt.significance, "0.1"),
-       "p below this makes a likelihood-ratio test decisive ('favours')")
-      ("bins-per-decade", po::value(&o.opt.bins_per_decade)->default_value(o.opt.bins_per_decade),
-       "log-binned histogram: bins per decade")
-      ("cell-mass", po::value(&o.cell_mass_text)->default_value(o.cell_mass_text),
-       "mean cell mass: the histogram's edges fall halfway between the masses of fragments of k and k + 1 "
-       "cells. auto: total mass / cells of the fragments files (none for text input); 0: plain log bins; "
-       "or a value (cell counts always use 1)")
-      ("logbin-min", po::value(&o.logbin_min)->default_value(o.logbin_min),
-       "lower end of the log-binned slope fit: xmin (the primary fit's), all, a value, or N cells ('2cells')")
-      ("logbin-max", po::value(&o.logbin_max)->default_value(o.logbin_max),
-       "upper end of the log-binned slope fit: inf, a value, or N cells ('25cells')")
-      ("threads", po::value(&o.opt.threads)->default_value(0), "threads for the resampling (0: all cores; results do not depend on it)")
-      ("histogram-csv", po::value(&o.histogram_csv),
-       "also write the log-binned density histogram as CSV (center,density,count,lower,upper) to this file");
+  desc.add_options()("input", po::value(&o.inputs)->required()->multitoken(),
+                     "fragments files or text columns ('-' reads standard input); several are pooled into one sample "
+                     "(e.g. the runs of several seeds)")(
+      "input-format", po::value(&o.input_format)->default_value(o.input_format),
+      "auto (HDF5 when the input starts with the HDF5 signature, else text), hdf5 or text")(
+      "format", po::value(&o.format)->default_value(o.format),
+      "output: hdf5 (the /fit group) or text (key value lines)")(
+      "column", po::value(&o.column)->default_value(o.column),
+      "fragments file: mass (continuous primary) or cell_count (integers: discrete primary)")(
+      "min-cells", po::value(&o.min_cells_text)->default_value(o.min_cells_text),
+      "fragments file: fit only fragments of at least N cells; 'file' takes the file's own min_cells "
+      "attribute (fragment-count --min-cells; none: all fragments). The number left out is reported")(
+      "model", po::value(&o.opt.model)->default_value(o.opt.model),
+      "primary estimator: auto (discrete for integer data), continuous or discrete")(
+      "xmin", po::value(&o.xmin_text), "fix the lower cutoff instead of scanning for it")(
+      "xmax", po::value(&o.xmax_text),
+      "upper cutoff: values above it are left out (and counted) and the power law is truncated there")(
+      "min-tail", po::value(&o.opt.scan.min_tail)->default_value(o.opt.scan.min_tail),
+      "xmin candidates must leave at least N values in the tail")(
+      "ks", po::value(&o.ks)->default_value(o.ks),
+      "KS distance of continuous fits: two-sided (sup|S-P|, CSN) or powerlaw-r (as R poweRlaw)")(
+      "bootstrap", po::value(&o.opt.bootstrap)->default_value(o.opt.bootstrap),
+      "non-parametric bootstrap resamples for the uncertainty of alpha and xmin (0: none)")(
+      "gof-samples", po::value(&o.opt.gof_samples)->default_value(o.opt.gof_samples),
+      "synthetic sets for the goodness-of-fit p-value (0: none; 2500 gives p to +-0.01)")(
+      "no-compare", po::bool_switch(&o.no_compare), "skip the likelihood-ratio tests")(
+      "significance", po::value(&o.opt.significance)->default_value(o.opt.significance, "0.1"),
+      "p below this makes a likelihood-ratio test decisive ('favours')")(
+      "bins-per-decade", po::value(&o.opt.bins_per_decade)->default_value(o.opt.bins_per_decade),
+      "log-binned histogram: bins per decade")(
+      "cell-mass", po::value(&o.cell_mass_text)->default_value(o.cell_mass_text),
+      "mean cell mass: the histogram's edges fall halfway between the masses of fragments of k and k + 1 "
+      "cells. auto: total mass / cells of the fragments files (none for text input); 0: plain log bins; "
+      "or a value (cell counts always use 1)")(
+      "logbin-min", po::value(&o.logbin_min)->default_value(o.logbin_min),
+      "lower end of the log-binned slope fit: xmin (the primary fit's), all, a value, or N cells ('2cells')")(
+      "logbin-max", po::value(&o.logbin_max)->default_value(o.logbin_max),
+      "upper end of the log-binned slope fit: inf, a value, or N cells ('25cells')")(
+      "threads", po::value(&o.opt.threads)->default_value(0),
+      "threads for the resampling (0: all cores; results do not depend on it)")(
+      "histogram-csv", po::value(&o.histogram_csv),
+      "also write the log-binned density histogram as CSV (center,density,count,lower,upper) to this file");
   cli::add_common(desc, o.common, cli::kOutput | cli::kSeed | cli::kQuiet | cli::kConfig, cli::kOutputHdf5OrText);
   po::positional_options_description positional;
   positional.add("input", -1);
@@ -147,19 +147,25 @@ void resolve_options(Options& o) {
   std::vector<FileRole> input_roles{{"--config", o.common.config}};
   for (const std::string& input : o.inputs) input_roles.push_back({"FILE", input});
   check_file_roles(input_roles, {{"-o", o.common.output}, {"--histogram-csv", o.histogram_csv}});
-  if (o.ks == "two-sided") o.opt.scan.ks = analysis::KsConvention::two_sided;
-  else if (o.ks == "powerlaw-r") o.opt.scan.ks = analysis::KsConvention::powerlaw_r;
-  else throw UsageError("--ks: expected two-sided or powerlaw-r, got '" + o.ks + "'");
+  if (o.ks == "two-sided")
+    o.opt.scan.ks = analysis::KsConvention::two_sided;
+  else if (o.ks == "powerlaw-r")
+    o.opt.scan.ks = analysis::KsConvention::powerlaw_r;
+  else
+    throw UsageError("--ks: expected two-sided or powerlaw-r, got '" + o.ks + "'");
   if (o.vm.count("xmin")) {
     o.opt.scan.xmin = parse_bound(o.xmin_text, "--xmin");
-    if (!(o.opt.scan.xmin > 0) || !std::isfinite(o.opt.scan.xmin)) throw UsageError("--xmin: must be a positive number");
+    if (!(o.opt.scan.xmin > 0) || !std::isfinite(o.opt.scan.xmin))
+      throw UsageError("--xmin: must be a positive number");
   }
   if (o.vm.count("xmax")) {
     o.opt.scan.xmax = parse_bound(o.xmax_text, "--xmax");
     if (!(o.opt.scan.xmax > 0)) throw UsageError("--xmax: must be a positive number");
   }
   const auto nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  o.lower = o.logbin_min == "xmin" ? Bound{nan} : o.logbin_min == "all" ? Bound{0} : parse_bound_or_cells(o.logbin_min, "--logbin-min");
+  o.lower = o.logbin_min == "xmin"  ? Bound{nan}
+            : o.logbin_min == "all" ? Bound{0}
+                                    : parse_bound_or_cells(o.logbin_min, "--logbin-min");
   o.upper = o.logbin_max == "inf" ? Bound{inf} : parse_bound_or_cells(o.logbin_max, "--logbin-max");
   o.cell_mass_auto = o.cell_mass_text == "auto";
   if (!o.cell_mass_auto) o.opt.cell_mass = parse_bound(o.cell_mass_text, "--cell-mass");

@@ -11,8 +11,8 @@
 #include "core/error.hpp"
 #include "core/file_roles.hpp"
 #include "core/provenance.hpp"
-#include "io/header.hpp"
 #include "io/hdf5.hpp"
+#include "io/header.hpp"
 #include "render/canvas.hpp"
 #include "render/picture_files.hpp"
 #include "render/run_picture.hpp"
@@ -54,43 +54,44 @@ struct Options {
 };
 
 cli::ToolSpec tool_spec() {
-  return {
-      "render", "RUN.h5|MESH.h5|- [options] -o PICTURE.png|.svg",
-      "Draws a mesh or one frame of a run (or every frame, for a movie) to PNG or SVG. Polygon cells are drawn "
-      "turned and moved as in the frame; rubber nodes as dots. Cells or nodes are coloured by fragment (with "
-      "--fragments), speed, strain (mean strain of their beams or bonds) or any per-body dataset or time series "
-      "of the file; beams and bonds by strain relative to the breaking threshold (material.t_eps of dem-run; the "
-      "bond cut-off of rubber-run), broken ones marked with a cross. Colour bars carry their units.",
-      "  render explosion.h5 --time 1e-3 -o explosion-1ms.png\n"
-      "  render explosion.h5 --fragments fragments.h5 --beams off -o fragments.svg\n"
-      "  render explosion.h5 --all-frames --colour speed --beams broken -o movie/explosion-%04d.png\n"
-      "  render crack.h5 --frame -1 --axes -o crack.png\n"
-      "  render disc.h5 -o mesh.svg"};
+  return {"render", "RUN.h5|MESH.h5|- [options] -o PICTURE.png|.svg",
+          "Draws a mesh or one frame of a run (or every frame, for a movie) to PNG or SVG. Polygon cells are drawn "
+          "turned and moved as in the frame; rubber nodes as dots. Cells or nodes are coloured by fragment (with "
+          "--fragments), speed, strain (mean strain of their beams or bonds) or any per-body dataset or time series "
+          "of the file; beams and bonds by strain relative to the breaking threshold (material.t_eps of dem-run; the "
+          "bond cut-off of rubber-run), broken ones marked with a cross. Colour bars carry their units.",
+          "  render explosion.h5 --time 1e-3 -o explosion-1ms.png\n"
+          "  render explosion.h5 --fragments fragments.h5 --beams off -o fragments.svg\n"
+          "  render explosion.h5 --all-frames --colour speed --beams broken -o movie/explosion-%04d.png\n"
+          "  render crack.h5 --frame -1 --axes -o crack.png\n"
+          "  render disc.h5 -o mesh.svg"};
 }
 
 void parse_options(int argc, char** argv, Options& o) {
   po::options_description desc("Options");
-  desc.add_options()
-      ("input", po::value(&o.input)->required(), "mesh or run file, or - for standard input")
-      ("frame", po::value(&o.frame), "frame to draw: 0 the first, -1 the final state (default: the fragments' "
-       "frame with --fragments, else -1)")
-      ("time", po::value(&o.time), "draw the frame nearest to this time, in s")
-      ("all-frames", po::bool_switch(&o.all_frames), "draw every frame; -o needs a frame-number pattern, e.g. "
-       "picture-%04d.png (numbered 0, 1, 2, ... for a movie)")
-      ("every", po::value(&o.every)->default_value(1), "with --all-frames: every N-th frame only")
-      ("colour", po::value(&o.colour), "what colours cells or nodes: fragment, speed, strain, none, or a dataset or "
-       "time series with one value per body (e.g. angle, angular_velocity, /particles/cells/area); default: "
-       "fragment with --fragments, else speed (DEM run), strain (rubber run), none (mesh)")
-      ("fragments", po::value(&o.fragments), "fragments file of this run (fragment-count) for --colour fragment")
-      ("beams", po::value(&o.beams)->default_value("strain"), "beams or bonds: strain (coloured by strain relative to "
-       "the breaking threshold, broken ones crossed), broken (only the broken ones), off")
-      ("range", po::value(&o.range), "colour range of the cells' or nodes' field, MIN,MAX (default: the data's)")
-      ("view", po::value(&o.view), "region shown, XMIN,YMIN,XMAX,YMAX in m (default: everything)")
-      ("width", po::value(&o.size.width)->default_value(1000), "picture width in pixels")
-      ("height", po::value(&o.size.height)->default_value(0), "picture height in pixels (0: from the view's aspect)")
-      ("axes", po::bool_switch(&o.axes), "draw axes with ticks in metres")
-      ("no-title", po::bool_switch(&o.no_title), "leave out the title line (file, frame, time)")
-      ("format", po::value(&o.format), "png or svg (default: from the output's extension; png for standard output)");
+  desc.add_options()("input", po::value(&o.input)->required(), "mesh or run file, or - for standard input")(
+      "frame", po::value(&o.frame),
+      "frame to draw: 0 the first, -1 the final state (default: the fragments' "
+      "frame with --fragments, else -1)")("time", po::value(&o.time), "draw the frame nearest to this time, in s")(
+      "all-frames", po::bool_switch(&o.all_frames),
+      "draw every frame; -o needs a frame-number pattern, e.g. "
+      "picture-%04d.png (numbered 0, 1, 2, ... for a movie)")("every", po::value(&o.every)->default_value(1),
+                                                              "with --all-frames: every N-th frame only")(
+      "colour", po::value(&o.colour),
+      "what colours cells or nodes: fragment, speed, strain, none, or a dataset or "
+      "time series with one value per body (e.g. angle, angular_velocity, /particles/cells/area); default: "
+      "fragment with --fragments, else speed (DEM run), strain (rubber run), none (mesh)")(
+      "fragments", po::value(&o.fragments), "fragments file of this run (fragment-count) for --colour fragment")(
+      "beams", po::value(&o.beams)->default_value("strain"),
+      "beams or bonds: strain (coloured by strain relative to "
+      "the breaking threshold, broken ones crossed), broken (only the broken ones), off")(
+      "range", po::value(&o.range), "colour range of the cells' or nodes' field, MIN,MAX (default: the data's)")(
+      "view", po::value(&o.view), "region shown, XMIN,YMIN,XMAX,YMAX in m (default: everything)")(
+      "width", po::value(&o.size.width)->default_value(1000), "picture width in pixels")(
+      "height", po::value(&o.size.height)->default_value(0), "picture height in pixels (0: from the view's aspect)")(
+      "axes", po::bool_switch(&o.axes), "draw axes with ticks in metres")(
+      "no-title", po::bool_switch(&o.no_title), "leave out the title line (file, frame, time)")(
+      "format", po::value(&o.format), "png or svg (default: from the output's extension; png for standard output)");
   cli::add_common(desc, o.common, cli::kOutput | cli::kQuiet | cli::kConfig,
                   "picture file, .png or .svg (with --all-frames a frame-number pattern); '-' writes the PNG (or "
                   "--format svg) to standard output");
@@ -117,7 +118,8 @@ render::ImageFormat check_output(const Options& o, int choices) {
   // (a name without an extension, such as /dev/null, takes --format's)
   if (vm.count("format") && std::filesystem::path(output).has_extension() && render::format_from_name(output) != fmt)
     throw UsageError("--format " + o.format + " does not match the extension of '" + output + "'");
-  if (o.all_frames && output == "-") throw UsageError("--all-frames: write to files (-o picture-%04d.png), not to standard output");
+  if (o.all_frames && output == "-")
+    throw UsageError("--all-frames: write to files (-o picture-%04d.png), not to standard output");
   if (o.all_frames) render::numbered_name(output, 0);  // checks the pattern before any work
   return fmt;
 }
@@ -137,7 +139,8 @@ render::PictureOptions picture_options(const Options& o) {
   }
   if (o.vm.count("view")) {
     const auto v = parse_numbers(o.view, 4, "--view", "XMIN,YMIN,XMAX,YMAX");
-    if (!(v[2] > v[0] && v[3] > v[1])) throw UsageError("--view: XMAX must exceed XMIN and YMAX YMIN, got '" + o.view + "'");
+    if (!(v[2] > v[0] && v[3] > v[1]))
+      throw UsageError("--view: XMAX must exceed XMIN and YMAX YMIN, got '" + o.view + "'");
     opt.view = std::array<double, 4>{v[0], v[1], v[2], v[3]};
   }
   return opt;
@@ -176,14 +179,16 @@ int run(int argc, char** argv) {
   const std::string provenance = provenance_line(run);
   render::RunPicture picture(root, labels, opt);
   if (!picture.is_run() && choices > 0)
-    throw UsageError(std::string(vm.count("frame") ? "--frame" : vm.count("time") ? "--time" : "--all-frames") +
+    throw UsageError(std::string(vm.count("frame")  ? "--frame"
+                                 : vm.count("time") ? "--time"
+                                                    : "--all-frames") +
                      ": " + o.input + " is a mesh file: it has no frames");
 
   auto say = [&](const std::string& text) {
     if (!o.common.quiet) std::cerr << "render: " << text << "\n";
   };
   if (!o.all_frames) {
-    const long long k = vm.count("frame") ? picture.frame_index(o.frame)
+    const long long k = vm.count("frame")  ? picture.frame_index(o.frame)
                         : vm.count("time") ? picture.frame_at_time(o.time)
                                            : picture.default_frame();
     if (labels && picture.colour() == "fragment" && picture.is_run() && k != labels->frame)

@@ -46,9 +46,9 @@ int main(int argc, char** argv) {
     rubber::RubberSystem system = rubber::build_rubber(mesh, setup, args.common.seed, args.common.threads);
 
     Progress progress("rubber-run", args.common.quiet);
-    const rubber::RubberSummary s = rubber::run_to_file(system, setup, mesh, scene,
-                                                        cli::scene_run("rubber-run", args, scene), in,
-                                                        args.common.output, args.checkpoint, progress);
+    const rubber::RubberSummary s =
+        rubber::run_to_file(system, setup, mesh, scene, cli::scene_run("rubber-run", args, scene), in,
+                            args.common.output, args.checkpoint, progress);
     progress.finish(rubber::summary_line(s, system, setup, mesh));
     if (args.profile)
       write_phase_table(std::cerr, "rubber-run: phases of " + std::to_string(s.steps) + " steps", s.phases);

@@ -12,8 +12,8 @@
 #include "analysis/wave_speed_theory.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
-#include "core/option_check.hpp"
 #include "core/file_roles.hpp"
+#include "core/option_check.hpp"
 #include "core/provenance.hpp"
 #include "io/header.hpp"
 #include "io/speeds_io.hpp"
@@ -41,8 +41,8 @@ std::array<double, 2> parse_interval(const std::string& text, const std::string&
 // Every option's value, as parsed.
 struct Options {
   cli::CommonOptions common;
-  std::string input, format = "hdf5", signal = "displacement", arrival = "threshold", amplitude = "local", side = "both", source,
-              range, time, stretch, rows_along, theory;
+  std::string input, format = "hdf5", signal = "displacement", arrival = "threshold", amplitude = "local",
+                     side = "both", source, range, time, stretch, rows_along, theory;
   std::vector<std::string> directions, modes;
   analysis::FrontOptions front;
   bool no_interpolate = false;
@@ -51,79 +51,80 @@ struct Options {
 };
 
 cli::ToolSpec tool_spec() {
-  return {
-      "wave-speed", "[options] RUN|-   or   wave-speed --theory [mooney-rivlin|dem] [options]",
-      "Measures the longitudinal and shear wave speeds of a run (rubber-run or dem-run): the arrival time of "
-      "the front (first time the displacement, velocity or strain at a distance reaches a fraction of the pulse "
-      "amplitude) at many distances from the source along the chosen directions, fitted by a straight line, "
-      "gives the lab speed with its standard error. Unset options are taken from the run's /parameters, mesh and "
-      "first frame. The measurement is compared with the long-wavelength speeds of the Mooney-Rivlin sheet at "
-      "the same stretch (rubber; only when every bond of the lattice is in its Mooney-Rivlin range, else it says "
-      "why not) or with the plane-stress speeds of measured elastic constants (DEM: c_L = sqrt(K/(rho(1-nu^2))), "
-      "c_S = sqrt(K/(2 rho(1+nu)))). With --theory and no run, prints the prediction alone. Writes an HDF5 file "
-      "of kind speeds, or key value lines with --format text.",
-      "  wave-speed wave.h5 --direction x --mode shear --format text\n"
-      "  mesh-gen triangular --nodes 400x40 --spacing 1 | rubber-run --scene data/scenes/wave.ini - -o wave.h5 && "
-      "wave-speed wave.h5 -o speeds.h5\n"
-      "  wave-speed pulse.h5 --direction radial --theory dem --young 4.1e8 --poisson 0.2 --format text\n"
-      "  wave-speed --theory --a 1 --b 1.5 --density 1 --stretch 1.5x3 --format text\n"
-      "  wave-speed --theory dem --young 4.1e8 --poisson 0.2 --density 5000 --format text"};
+  return {"wave-speed", "[options] RUN|-   or   wave-speed --theory [mooney-rivlin|dem] [options]",
+          "Measures the longitudinal and shear wave speeds of a run (rubber-run or dem-run): the arrival time of "
+          "the front (first time the displacement, velocity or strain at a distance reaches a fraction of the pulse "
+          "amplitude) at many distances from the source along the chosen directions, fitted by a straight line, "
+          "gives the lab speed with its standard error. Unset options are taken from the run's /parameters, mesh and "
+          "first frame. The measurement is compared with the long-wavelength speeds of the Mooney-Rivlin sheet at "
+          "the same stretch (rubber; only when every bond of the lattice is in its Mooney-Rivlin range, else it says "
+          "why not) or with the plane-stress speeds of measured elastic constants (DEM: c_L = sqrt(K/(rho(1-nu^2))), "
+          "c_S = sqrt(K/(2 rho(1+nu)))). With --theory and no run, prints the prediction alone. Writes an HDF5 file "
+          "of kind speeds, or key value lines with --format text.",
+          "  wave-speed wave.h5 --direction x --mode shear --format text\n"
+          "  mesh-gen triangular --nodes 400x40 --spacing 1 | rubber-run --scene data/scenes/wave.ini - -o wave.h5 && "
+          "wave-speed wave.h5 -o speeds.h5\n"
+          "  wave-speed pulse.h5 --direction radial --theory dem --young 4.1e8 --poisson 0.2 --format text\n"
+          "  wave-speed --theory --a 1 --b 1.5 --density 1 --stretch 1.5x3 --format text\n"
+          "  wave-speed --theory dem --young 4.1e8 --poisson 0.2 --density 5000 --format text"};
 }
 
 void add_measure_options(po::options_description& desc, Options& o) {
   po::options_description measure("Measurement (a run)");
-  measure.add_options()
-      ("input", po::value(&o.input), "run file (rubber-run or dem-run), or - for standard input")
-      ("direction", po::value(&o.directions)->composing(),
-       "propagation direction: x, y, -x, -y, an angle in degrees, or radial (from a point source); repeatable "
-       "(default: the run's loading.pulse_direction, radial for the DEM pulse and explosion scenes, else x)")
-      ("mode", po::value(&o.modes)->composing(),
-       "longitudinal, shear or auto (each mode present in the signal); repeatable (default: the run's "
-       "loading.pulse, else auto)")
-      ("signal", po::value(&o.signal)->default_value(o.signal),
-       "displacement (from the first frame), velocity, or strain (link strain change; needs --mode)")
-      ("source", po::value(&o.source), "source position XxY in m, lab frame (default: velocity-weighted centroid of the "
-       "first frame in which something moves); write --source=-1x2 for negative values")
-      ("threshold", po::value(&o.front.threshold)->default_value(0.5), "arrival level, fraction of the amplitude")
-      ("arrival", po::value(&o.arrival)->default_value(o.arrival),
-       "threshold (the front: first time the level is reached) or peak (the first maximum after that)")
-      ("amplitude", po::value(&o.amplitude)->default_value(o.amplitude),
-       "what the threshold is a fraction of: local (each distance's own peak), global (the strongest peak), or "
-       "a number (m, m/s or 1, by signal)")
-      ("floor", po::value(&o.front.floor)->default_value(1e-3),
-       "distances whose peak is below this fraction of the strongest have no arrival")
-      ("bin", po::value(&o.front.bin)->default_value(0.0), "bin width in m along the direction (0: median link length)")
-      ("lateral", po::value(&o.front.lateral)->default_value(0.0),
-       "half-width in m of the band around the ray through the source (0: no limit)")
-      ("range", po::value(&o.range), "distances from the source fitted, MIN:MAX in m (default 0.25 to 0.95 of the "
-       "farthest receiver)")
-      ("time", po::value(&o.time), "frames used, TMIN:TMAX in s (default: all)")
-      ("side", po::value(&o.side)->default_value(o.side), "both (distances folded), forward or backward of the source")
-      ("reject", po::value(&o.front.reject)->default_value(4.0),
-       "drop arrivals further than this many robust standard deviations from the line (0: keep all)")
-      ("no-interpolate", po::bool_switch(&o.no_interpolate), "arrival = first frame at or above the level");
+  measure.add_options()("input", po::value(&o.input), "run file (rubber-run or dem-run), or - for standard input")(
+      "direction", po::value(&o.directions)->composing(),
+      "propagation direction: x, y, -x, -y, an angle in degrees, or radial (from a point source); repeatable "
+      "(default: the run's loading.pulse_direction, radial for the DEM pulse and explosion scenes, else x)")(
+      "mode", po::value(&o.modes)->composing(),
+      "longitudinal, shear or auto (each mode present in the signal); repeatable (default: the run's "
+      "loading.pulse, else auto)")(
+      "signal", po::value(&o.signal)->default_value(o.signal),
+      "displacement (from the first frame), velocity, or strain (link strain change; needs --mode)")(
+      "source", po::value(&o.source),
+      "source position XxY in m, lab frame (default: velocity-weighted centroid of the "
+      "first frame in which something moves); write --source=-1x2 for negative values")(
+      "threshold", po::value(&o.front.threshold)->default_value(0.5), "arrival level, fraction of the amplitude")(
+      "arrival", po::value(&o.arrival)->default_value(o.arrival),
+      "threshold (the front: first time the level is reached) or peak (the first maximum after that)")(
+      "amplitude", po::value(&o.amplitude)->default_value(o.amplitude),
+      "what the threshold is a fraction of: local (each distance's own peak), global (the strongest peak), or "
+      "a number (m, m/s or 1, by signal)")(
+      "floor", po::value(&o.front.floor)->default_value(1e-3),
+      "distances whose peak is below this fraction of the strongest have no arrival")(
+      "bin", po::value(&o.front.bin)->default_value(0.0), "bin width in m along the direction (0: median link length)")(
+      "lateral", po::value(&o.front.lateral)->default_value(0.0),
+      "half-width in m of the band around the ray through the source (0: no limit)")(
+      "range", po::value(&o.range),
+      "distances from the source fitted, MIN:MAX in m (default 0.25 to 0.95 of the "
+      "farthest receiver)")("time", po::value(&o.time), "frames used, TMIN:TMAX in s (default: all)")(
+      "side", po::value(&o.side)->default_value(o.side), "both (distances folded), forward or backward of the source")(
+      "reject", po::value(&o.front.reject)->default_value(4.0),
+      "drop arrivals further than this many robust standard deviations from the line (0: keep all)")(
+      "no-interpolate", po::bool_switch(&o.no_interpolate), "arrival = first frame at or above the level");
   desc.add(measure);
 }
 
 void add_theory_options(po::options_description& desc, Options& o) {
   po::options_description theory_opts("Prediction");
-  theory_opts.add_options()
-      ("theory", po::value(&o.theory)->implicit_value("mooney-rivlin"),
-       "mooney-rivlin (default when given alone) or dem; without a run, print the prediction alone")
-      ("a", po::value(&o.a), "Mooney-Rivlin a in m^2/s^2 (default: the run's material.a)")
-      ("b", po::value(&o.b), "Mooney-Rivlin b (default: the run's material.b)")
-      ("density", po::value(&o.density),
-       "Mooney-Rivlin: areal density in kg/m^2 (enters the stresses only); dem: density in kg/m^3")
-      ("stretch", po::value(&o.stretch), "extension ratios LXxLY (default: the run's scene, else its first frame; "
-       "theory alone: 1x1)")
-      ("young", po::value(&o.young), "dem: Young modulus K in Pa measured on the DEM (elastic-moduli scene)")
-      ("poisson", po::value(&o.poisson), "dem: Poisson ratio measured on the DEM")
-      ("spacing", po::value(&o.spacing), "lattice spacing Delta in m, for the lattice check (default: the run's mesh)")
-      ("rows-along", po::value(&o.rows_along), "close-packed rows along x or y (default: the run's mesh, else x)")
-      ("short-width", po::value(&o.short_width), "short-bond width u_s in m: bonds shorter than Delta + u_s are not "
-       "Mooney-Rivlin (default: the run's scene)")
-      ("cutoff", po::value(&o.cutoff), "bond cut-off u_c in m (default: the run's scene)")
-      ("cutoff-width", po::value(&o.cutoff_width), "width of the cut-off in m (default: the run's scene)");
+  theory_opts.add_options()(
+      "theory", po::value(&o.theory)->implicit_value("mooney-rivlin"),
+      "mooney-rivlin (default when given alone) or dem; without a run, print the prediction alone")(
+      "a", po::value(&o.a), "Mooney-Rivlin a in m^2/s^2 (default: the run's material.a)")(
+      "b", po::value(&o.b), "Mooney-Rivlin b (default: the run's material.b)")(
+      "density", po::value(&o.density),
+      "Mooney-Rivlin: areal density in kg/m^2 (enters the stresses only); dem: density in kg/m^3")(
+      "stretch", po::value(&o.stretch),
+      "extension ratios LXxLY (default: the run's scene, else its first frame; "
+      "theory alone: 1x1)")("young", po::value(&o.young),
+                            "dem: Young modulus K in Pa measured on the DEM (elastic-moduli scene)")(
+      "poisson", po::value(&o.poisson), "dem: Poisson ratio measured on the DEM")(
+      "spacing", po::value(&o.spacing), "lattice spacing Delta in m, for the lattice check (default: the run's mesh)")(
+      "rows-along", po::value(&o.rows_along), "close-packed rows along x or y (default: the run's mesh, else x)")(
+      "short-width", po::value(&o.short_width),
+      "short-bond width u_s in m: bonds shorter than Delta + u_s are not "
+      "Mooney-Rivlin (default: the run's scene)")("cutoff", po::value(&o.cutoff),
+                                                  "bond cut-off u_c in m (default: the run's scene)")(
+      "cutoff-width", po::value(&o.cutoff_width), "width of the cut-off in m (default: the run's scene)");
   desc.add(theory_opts);
 }
 

@@ -43,9 +43,9 @@ void write_key_values(const CrackReport& r, std::ostream& out) {
       << s.broken_crossing << "\nbroken_bulk " << s.broken_bulk << "\nfront_angle " << s.front_angle
       << "\nfront_angle_upper " << s.front_angle_upper << "\nfront_angle_lower " << s.front_angle_lower
       << "\nfront_rows " << s.front_rows << "\nfront_rms " << s.front_rms << "\nfront_lag " << s.front_lag
-      << "\nmach_angle_T " << r.mach_angle_T << "\nmach_angle_L " << r.mach_angle_L << "\ngrip_bonds "
-      << s.grip_bonds << "\ngrip_bonds_broken " << s.grip_bonds_broken << "\nfree_nodes " << s.free_nodes
-      << "\nnodes_past_grips " << s.nodes_past_grips << "\n";
+      << "\nmach_angle_T " << r.mach_angle_T << "\nmach_angle_L " << r.mach_angle_L << "\ngrip_bonds " << s.grip_bonds
+      << "\ngrip_bonds_broken " << s.grip_bonds_broken << "\nfree_nodes " << s.free_nodes << "\nnodes_past_grips "
+      << s.nodes_past_grips << "\n";
 }
 
 }  // namespace frac::analysis

@@ -43,7 +43,9 @@ Line fit(const std::vector<std::array<double, 2>>& hx) {
 
 // Angle of the line x = a + s h to the crack line (h across it, x along it), in degrees: 90 for a front
 // straight across, below 90 for one that leans back from the crack line (a wedge opening behind the tip).
-double angle_to_line(const Line& l) { return std::isnan(l.s) ? kNaN : std::atan2(1.0, -l.s) * 180.0 / std::numbers::pi; }
+double angle_to_line(const Line& l) {
+  return std::isnan(l.s) ? kNaN : std::atan2(1.0, -l.s) * 180.0 / std::numbers::pi;
+}
 
 // Broken bonds across the crack line (the tip: the farthest along it) and in the bulk, and the grip bonds
 // (clamped rows to free rows) behind the tip, counted once the tip is known.
@@ -76,8 +78,8 @@ void count_broken_bonds(const mesh::NodeMesh& m, const io::BodyFrame& f, std::si
   }
   for (std::size_t b : grip) {
     const auto [i, j] = m.bond[b];
-    if (!s.tip_found ||
-        m.position[static_cast<std::size_t>(i)].x() + m.position[static_cast<std::size_t>(j)].x() > 2 * s.tip_reference_x)
+    if (!s.tip_found || m.position[static_cast<std::size_t>(i)].x() + m.position[static_cast<std::size_t>(j)].x() >
+                            2 * s.tip_reference_x)
       continue;
     ++s.grip_bonds;
     if (f.intact[b] == 0) ++s.grip_bonds_broken;
@@ -103,7 +105,8 @@ void fit_front(const mesh::NodeMesh& m, const io::BodyFrame& f, double stretch_x
   for (std::size_t r = clamp_rows; r + clamp_rows < ny; ++r) {
     const std::size_t first = r * nx;
     const double ry = m.position[first].y();
-    const auto from_line = static_cast<std::size_t>(std::lround(std::abs(ry - y0) / row_step - 0.5));  // rows in between
+    const auto from_line =
+        static_cast<std::size_t>(std::lround(std::abs(ry - y0) / row_step - 0.5));  // rows in between
     if (2 * from_line >= half) continue;
     const double h = stretch_y * std::abs(ry - y0);  // the row's far-field lab distance from the line
     for (std::size_t c = nx; c-- > 2;)

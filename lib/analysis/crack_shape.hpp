@@ -21,22 +21,22 @@
 namespace frac::analysis {
 
 struct CrackShape {
-  double time = 0;                 // s, of the frame
-  bool tip_found = false;          // a crossing bond is broken
-  double tip_reference_x = 0;      // m, reference x where the furthest broken crossing bond crosses the line
-  double tip_x = 0;                // m, lab x of that bond (mean of its nodes)
-  std::size_t broken_crossing = 0; // broken bonds across the crack line
-  std::size_t broken_bulk = 0;     // broken bonds that do not cross it
+  double time = 0;                  // s, of the frame
+  bool tip_found = false;           // a crossing bond is broken
+  double tip_reference_x = 0;       // m, reference x where the furthest broken crossing bond crosses the line
+  double tip_x = 0;                 // m, lab x of that bond (mean of its nodes)
+  std::size_t broken_crossing = 0;  // broken bonds across the crack line
+  std::size_t broken_bulk = 0;      // broken bonds that do not cross it
   // The unloading front, each half of the strip fitted separately, and both together (the intercept
   // shared): angle to the crack line in degrees, NaN when fewer than 3 rows have a front.
   double front_angle_upper = 0, front_angle_lower = 0, front_angle = 0;
-  std::size_t front_rows = 0;      // rows with a front, both halves
-  double front_rms = 0;            // m, rms distance of the rows' fronts from the fitted lines (along x)
-  double front_lag = 0;            // m, tip x minus the fitted front's x on the crack line: how far the
-                                   // opening trails the tip (≈ 0: a wedge with the tip at its apex)
-  std::size_t grip_bonds = 0;          // bonds from the clamped rows to the free rows next to them, behind the tip
-  std::size_t grip_bonds_broken = 0;   // of those, broken: the sheet tears off the grips
-  std::size_t free_nodes = 0;          // nodes outside the clamped rows
+  std::size_t front_rows = 0;         // rows with a front, both halves
+  double front_rms = 0;               // m, rms distance of the rows' fronts from the fitted lines (along x)
+  double front_lag = 0;               // m, tip x minus the fitted front's x on the crack line: how far the
+                                      // opening trails the tip (≈ 0: a wedge with the tip at its apex)
+  std::size_t grip_bonds = 0;         // bonds from the clamped rows to the free rows next to them, behind the tip
+  std::size_t grip_bonds_broken = 0;  // of those, broken: the sheet tears off the grips
+  std::size_t free_nodes = 0;         // nodes outside the clamped rows
   // Of those, beyond the outer rows by more than the unstretched height of the free half strip: debris flying
   // past the grips (a retracted half folded over its grip reaches no further).
   std::size_t nodes_past_grips = 0;

@@ -147,8 +147,10 @@ FitInput read_fragment_values(const Group& root, const std::string& column, std:
                        " has " + std::to_string(in.values.size()));
     std::vector<double> kept;
     for (std::size_t i = 0; i < cells.size(); ++i) {
-      if (cells[i] >= min_cells) kept.push_back(in.values[i]);
-      else ++in.n_excluded_min_cells;
+      if (cells[i] >= min_cells)
+        kept.push_back(in.values[i]);
+      else
+        ++in.n_excluded_min_cells;
     }
     in.values = std::move(kept);
   }

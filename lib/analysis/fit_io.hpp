@@ -19,16 +19,16 @@ namespace frac::analysis {
 // The values to fit and where they came from.
 struct FitInput {
   std::vector<double> values;
-  std::string source;   // "values.txt", "-", "fragments.h5:/fragments/mass"
-  std::string column;   // "mass" or "cell_count" for a fragments file, "" for text
-  std::string unit;     // "kg", "1", or "" (unknown, text input)
-  std::int64_t n_read = 0;                 // values read before any filter
-  std::int64_t n_excluded_min_cells = 0;   // fragments below --min-cells (reported, never silent)
-  std::int64_t min_cells = 0;              // the --min-cells filter applied (0: none)
-  std::int64_t fragments_min_cells = -1;   // min_cells attribute of the fragments file (-1: none)
-  double total_mass = 0;                   // kg: all cells of the fragments files read (0 for text)
-  std::int64_t cells = 0;                  // their number
-  std::vector<std::size_t> input_sizes;    // values from each pooled input, in order (pool_into)
+  std::string source;                     // "values.txt", "-", "fragments.h5:/fragments/mass"
+  std::string column;                     // "mass" or "cell_count" for a fragments file, "" for text
+  std::string unit;                       // "kg", "1", or "" (unknown, text input)
+  std::int64_t n_read = 0;                // values read before any filter
+  std::int64_t n_excluded_min_cells = 0;  // fragments below --min-cells (reported, never silent)
+  std::int64_t min_cells = 0;             // the --min-cells filter applied (0: none)
+  std::int64_t fragments_min_cells = -1;  // min_cells attribute of the fragments file (-1: none)
+  double total_mass = 0;                  // kg: all cells of the fragments files read (0 for text)
+  std::int64_t cells = 0;                 // their number
+  std::vector<std::size_t> input_sizes;   // values from each pooled input, in order (pool_into)
 
   // total_mass / cells: what a fragment of k cells weighs about k times (0 without fragments files, or when a
   // mass is not finite: the fit refuses those values anyway).
@@ -61,8 +61,8 @@ bool input_is_hdf5(const std::string& path);
 
 // How powerlaw-fit reads its inputs.
 struct InputOptions {
-  std::string format = "auto";  // auto (HDF5 when the input starts with its signature), hdf5 or text
-  std::string column = "mass";  // fragments files: mass or cell_count
+  std::string format = "auto";           // auto (HDF5 when the input starts with its signature), hdf5 or text
+  std::string column = "mass";           // fragments files: mass or cell_count
   bool fragments_options_given = false;  // --column or --min-cells given: text input is refused
   std::function<std::int64_t(const io::Group&)> min_cells;  // a fragments file's --min-cells filter
 };

@@ -36,15 +36,15 @@ struct CellState {
 };
 
 struct Fragments {
-  std::vector<std::int64_t> cell_fragment;  // [N] fragment id of each cell
-  std::vector<double> mass;                 // [F] kg, decreasing
-  std::vector<std::int64_t> cell_count;     // [F]
-  std::vector<std::int64_t> first_cell;     // [F] smallest cell index of the fragment
-  std::vector<double> center_of_mass;       // [2F] m
-  std::vector<double> velocity;             // [2F] m/s, of the centre of mass
+  std::vector<std::int64_t> cell_fragment;           // [N] fragment id of each cell
+  std::vector<double> mass;                          // [F] kg, decreasing
+  std::vector<std::int64_t> cell_count;              // [F]
+  std::vector<std::int64_t> first_cell;              // [F] smallest cell index of the fragment
+  std::vector<double> center_of_mass;                // [2F] m
+  std::vector<double> velocity;                      // [2F] m/s, of the centre of mass
   std::vector<double> kinetic_energy_translational;  // [F] J
   std::vector<double> kinetic_energy_rotational;     // [F] J, in the centre-of-mass frame
-  double total_mass = 0.0;                  // kg, sum over all cells
+  double total_mass = 0.0;                           // kg, sum over all cells
 
   // total_mass / N: a fragment of k cells weighs about k times this.
   double mean_cell_mass() const;

@@ -67,7 +67,8 @@ void write_plain(Group& g, const char* name, std::span<const double> data, const
   Hid dcpl(H5Pcreate(H5P_DATASET_CREATE));
   H5Pset_obj_track_times(dcpl.get(), 0);
   Hid d(H5Dcreate2(g.id(), name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
-  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset (" + write_failure(g.file(), errno) + ")");
+  if (d.get() < 0)
+    throw RuntimeError(g.where(name) + ": cannot create dataset (" + write_failure(g.file(), errno) + ")");
   if (count > 0 && H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
     throw RuntimeError(g.where(name) + ": cannot write dataset (" + write_failure(g.file(), errno) + ")");
   g.set_attr("unit", unit, name);
@@ -125,8 +126,7 @@ FragmentInput read_fragment_input(const Group& root, const RunInfo& info, std::i
   const Group cells = root.group(kCells);
   in.position = frame_of<double>(cells, "position", frame, 2 * n, "two per cell of /particles/cells/mass");
   in.velocity = frame_of<double>(cells, "velocity", frame, 2 * n, "two per cell of /particles/cells/mass");
-  in.angular_velocity =
-      frame_of<double>(cells, "angular_velocity", frame, n, "one per cell of /particles/cells/mass");
+  in.angular_velocity = frame_of<double>(cells, "angular_velocity", frame, n, "one per cell of /particles/cells/mass");
   in.beam = read_beam_pairs(root, n);
   in.intact = read_beam_intact(root, frame, in.beam.size() / 2);
   return in;

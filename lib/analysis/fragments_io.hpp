@@ -28,9 +28,7 @@ struct FragmentInput {
   std::vector<double> mass, inertia, position, velocity, angular_velocity;
   std::vector<std::int64_t> beam;  // [2B]
   std::vector<std::uint8_t> intact;
-  CellState state() const {
-    return {mass, inertia, position, velocity, angular_velocity, beam, intact};
-  }
+  CellState state() const { return {mass, inertia, position, velocity, angular_velocity, beam, intact}; }
 };
 
 // The run's static data and frame list; InputError unless `root` is a DEM run (model "dem") whose
@@ -61,8 +59,8 @@ struct FragmentRecord {
   std::int64_t frame = 0, step = 0;
   double time = 0.0;
   std::int64_t min_cells = 1;
-  Fragments fragments;  // first_cell is not stored (recomputed on reading)
-  LogHistogram histogram;  // of the masses of the fragments of at least min_cells cells
+  Fragments fragments;             // first_cell is not stored (recomputed on reading)
+  LogHistogram histogram;          // of the masses of the fragments of at least min_cells cells
   FragmentTimeSeries time_series;  // written only when not empty
 };
 

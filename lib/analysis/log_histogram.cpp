@@ -51,7 +51,8 @@ LogHistogram log_histogram(std::span<const double> x, const LogHistogramOptions&
   }
   const std::size_t K = h.edges.size() - 1;
   h.count.assign(K, 0);
-  for (double v : x) ++h.count[static_cast<std::size_t>(std::upper_bound(h.edges.begin(), h.edges.end(), v) - h.edges.begin() - 1)];
+  for (double v : x)
+    ++h.count[static_cast<std::size_t>(std::upper_bound(h.edges.begin(), h.edges.end(), v) - h.edges.begin() - 1)];
   for (std::size_t k = 0; k < K; ++k) {
     const double a = h.edges[k], c = h.edges[k + 1];
     h.width.push_back(c - a);
@@ -83,7 +84,8 @@ LogSlopeFit fit_log_slope(const LogHistogram& h, const LogSlopeOptions& opt) {
     ++f.n_bins;
   }
   if (f.n_bins < 3) {
-    f.slope = f.slope_stderr = f.intercept = f.intercept_stderr = f.chi2_per_dof = std::numeric_limits<double>::quiet_NaN();
+    f.slope = f.slope_stderr = f.intercept = f.intercept_stderr = f.chi2_per_dof =
+        std::numeric_limits<double>::quiet_NaN();
     return f;
   }
   double c0, c1, cov00, cov01, cov11, chi2;

@@ -33,13 +33,13 @@ struct LogHistogramOptions {
 struct LogHistogram {
   double bins_per_decade = 5;
   bool integer_data = false;
-  double cluster_unit = 0;            // u the edges were moved to half-multiples of (1 for integer data; 0: none)
-  std::int64_t n_total = 0;           // values binned (all of them)
-  std::vector<double> edges;          // K+1 edges, ascending
-  std::vector<std::int64_t> count;    // K
-  std::vector<double> width;          // K: edge difference (= clusters in the bin times u)
-  std::vector<double> center;         // K: geometric centre of the bin; with clusters, of its first and last one
-  std::vector<double> density;        // K: count / (n_total * width); 0 for empty bins
+  double cluster_unit = 0;          // u the edges were moved to half-multiples of (1 for integer data; 0: none)
+  std::int64_t n_total = 0;         // values binned (all of them)
+  std::vector<double> edges;        // K+1 edges, ascending
+  std::vector<std::int64_t> count;  // K
+  std::vector<double> width;        // K: edge difference (= clusters in the bin times u)
+  std::vector<double> center;       // K: geometric centre of the bin; with clusters, of its first and last one
+  std::vector<double> density;      // K: count / (n_total * width); 0 for empty bins
   std::size_t size() const { return count.size(); }
 };
 
@@ -58,13 +58,13 @@ struct LogSlopeOptions {
 };
 
 struct LogSlopeFit {
-  bool ok = false;         // at least 3 bins (otherwise the numbers below are NaN)
-  double slope = 0;        // d ln(density) / d ln(x); the density exponent is -slope
-  double slope_stderr = 0; // from the weights (Poisson counts), scaled up by sqrt(chi2/dof) when that exceeds 1
-  double intercept = 0;    // ln density at x = 1
+  bool ok = false;          // at least 3 bins (otherwise the numbers below are NaN)
+  double slope = 0;         // d ln(density) / d ln(x); the density exponent is -slope
+  double slope_stderr = 0;  // from the weights (Poisson counts), scaled up by sqrt(chi2/dof) when that exceeds 1
+  double intercept = 0;     // ln density at x = 1
   double intercept_stderr = 0;
-  double chi2_per_dof = 0; // of the weighted fit; ~1 when counting noise explains the scatter
-  int n_bins = 0;          // bins used
+  double chi2_per_dof = 0;          // of the weighted fit; ~1 when counting noise explains the scatter
+  int n_bins = 0;                   // bins used
   double fit_min = 0, fit_max = 0;  // range actually covered by the bins used
   std::vector<std::uint8_t> used;   // per bin: 1 when in the fit
 };

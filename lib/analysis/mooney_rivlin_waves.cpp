@@ -5,8 +5,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "core/error.hpp"
 #include "continuum/mooney_rivlin.hpp"
+#include "core/error.hpp"
 
 namespace frac::analysis {
 namespace {
@@ -26,7 +26,8 @@ std::string number(double v) {
 }  // namespace
 
 void validate(const MooneyRivlin& m, Stretch s) {
-  if (!(m.a > 0) || !std::isfinite(m.a)) throw UsageError("--a: a must be a positive velocity squared, got " + number(m.a));
+  if (!(m.a > 0) || !std::isfinite(m.a))
+    throw UsageError("--a: a must be a positive velocity squared, got " + number(m.a));
   if (!std::isfinite(m.b)) throw UsageError("--b: b must be finite");
   if (!(m.density > 0) || !std::isfinite(m.density))
     throw UsageError("--density: the density must be positive, got " + number(m.density));
@@ -79,11 +80,16 @@ MrStress mooney_rivlin_stress(const MooneyRivlin& m, Stretch s) {
 
 std::string_view name(LatticeRegime r) {
   switch (r) {
-    case LatticeRegime::mooney_rivlin: return "mooney-rivlin";
-    case LatticeRegime::short_bonds: return "short-bonds";
-    case LatticeRegime::near_cutoff: return "near-cutoff";
-    case LatticeRegime::broken: return "broken";
-    case LatticeRegime::unchecked: return "unchecked";
+    case LatticeRegime::mooney_rivlin:
+      return "mooney-rivlin";
+    case LatticeRegime::short_bonds:
+      return "short-bonds";
+    case LatticeRegime::near_cutoff:
+      return "near-cutoff";
+    case LatticeRegime::broken:
+      return "broken";
+    case LatticeRegime::unchecked:
+      return "unchecked";
   }
   return "unchecked";
 }
@@ -99,8 +105,8 @@ LatticeCheck check_lattice(const LatticeParameters& p, Stretch s) {
   }
   // Reference bond directions: 0, 60, 120 degrees with rows along x; 90, 30, 150 with rows along y.
   const double deg = std::numbers::pi / 180;
-  const std::array<double, 3> angles =
-      p.rows_along == "x" ? std::array<double, 3>{0.0, 60 * deg, 120 * deg} : std::array<double, 3>{90 * deg, 30 * deg, 150 * deg};
+  const std::array<double, 3> angles = p.rows_along == "x" ? std::array<double, 3>{0.0, 60 * deg, 120 * deg}
+                                                           : std::array<double, 3>{90 * deg, 30 * deg, 150 * deg};
   for (std::size_t k = 0; k < 3; ++k) {
     const double dx = std::cos(angles[k]) * s.x, dy = std::sin(angles[k]) * s.y;
     out.families[k] = {angles[k], p.spacing * std::hypot(dx, dy)};
@@ -140,17 +146,19 @@ LatticeCheck check_lattice(const LatticeParameters& p, Stretch s) {
     return out;
   }
   if (p.short_width < 0) {
-    out.message = at + "the short-bond width u_s is unknown: the branch-1 condition (every bond longer than "
-                  "Delta + u_s) was not checked; shortest bonds " + number(u_min / p.spacing) + " Delta";
+    out.message = at +
+                  "the short-bond width u_s is unknown: the branch-1 condition (every bond longer than "
+                  "Delta + u_s) was not checked; shortest bonds " +
+                  number(u_min / p.spacing) + " Delta";
     return out;
   }
   out.regime = LatticeRegime::mooney_rivlin;
-  out.message = at + "every bond is in branch 2 (" + number(u_min / p.spacing) + " to " + number(u_max / p.spacing) +
-                " Delta, above Delta + u_s = " + number(1 + p.short_width / p.spacing) + " Delta" +
-                (p.cutoff > 0 && p.cutoff_width >= 0
-                     ? ", at least " + number(kCutoffClearance) + " cut-off widths below u_c"
-                     : std::string(p.cutoff > 0 ? ", below u_c" : ", cut-off not checked")) +
-                ")";
+  out.message =
+      at + "every bond is in branch 2 (" + number(u_min / p.spacing) + " to " + number(u_max / p.spacing) +
+      " Delta, above Delta + u_s = " + number(1 + p.short_width / p.spacing) + " Delta" +
+      (p.cutoff > 0 && p.cutoff_width >= 0 ? ", at least " + number(kCutoffClearance) + " cut-off widths below u_c"
+                                           : std::string(p.cutoff > 0 ? ", below u_c" : ", cut-off not checked")) +
+      ")";
   return out;
 }
 

@@ -33,12 +33,12 @@ struct Stretch {
 void validate(const MooneyRivlin& m, Stretch s);
 
 struct MrWaveSpeeds {
-  double direction = 0;       // rad, lab propagation direction measured from +x
-  double longitudinal = 0;    // m/s, lab; NaN when c_L^2 <= 0
-  double shear = 0;           // m/s, lab; NaN when c_T^2 <= 0 (b >= 2)
+  double direction = 0;               // rad, lab propagation direction measured from +x
+  double longitudinal = 0;            // m/s, lab; NaN when c_L^2 <= 0
+  double shear = 0;                   // m/s, lab; NaN when c_T^2 <= 0 (b >= 2)
   double longitudinal_reference = 0;  // m/s, omega/|k_ref| = lab / |F^T n|
   double shear_reference = 0;
-  double stretch_along = 1;   // |F^T n|
+  double stretch_along = 1;  // |F^T n|
 };
 MrWaveSpeeds mooney_rivlin_speeds(const MooneyRivlin& m, Stretch s, double direction);
 

@@ -85,7 +85,8 @@ std::vector<std::uint8_t> select_rows(const ObservableTable& t, const std::strin
   double threshold = 0;
   if (!condition.empty()) {
     const auto at = condition.find_first_of("<>");
-    if (at == std::string::npos) throw UsageError("--where: expected NAME>VALUE or NAME<VALUE, got '" + condition + "'");
+    if (at == std::string::npos)
+      throw UsageError("--where: expected NAME>VALUE or NAME<VALUE, got '" + condition + "'");
     column = t.column(condition.substr(0, at), file);
     op = condition[at];
     try {
@@ -116,7 +117,8 @@ LineFit fit_columns(const ObservableTable& t, const std::string& y, const std::s
   std::vector<std::uint8_t> used;
   const LineFit f = fit_line(xs, ys, 0.0, 0.0, used);
   if (f.points < 3)
-    throw InputError(file + ": only " + std::to_string(f.points) + " samples selected for the fit of " + y + " on " + x);
+    throw InputError(file + ": only " + std::to_string(f.points) + " samples selected for the fit of " + y + " on " +
+                     x);
   return f;
 }
 

@@ -13,9 +13,9 @@
 namespace frac::analysis {
 
 struct ObservableTable {
-  std::vector<double> time;                  // s
+  std::vector<double> time;  // s
   std::vector<std::string> names, units;
-  std::vector<std::vector<double>> columns;  // columns[c][row]
+  std::vector<std::vector<double>> columns;                                    // columns[c][row]
   std::size_t column(const std::string& name, const std::string& file) const;  // InputError if absent
 };
 

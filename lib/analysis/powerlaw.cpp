@@ -43,7 +43,8 @@ void check_fit_options(const FitOptions& opt) {
   // (logbin_min: NaN stands for the primary fit's x_min; logbin_max: infinity for no upper end)
   if (!std::isnan(opt.logbin_min) && !(opt.logbin_min >= 0 && std::isfinite(opt.logbin_min)))
     throw UsageError("--logbin-min: must be xmin, all or a number >= 0, got " + format_value(opt.logbin_min));
-  if (!(opt.logbin_max > 0)) throw UsageError("--logbin-max: must be inf or a positive number, got " + format_value(opt.logbin_max));
+  if (!(opt.logbin_max > 0))
+    throw UsageError("--logbin-max: must be inf or a positive number, got " + format_value(opt.logbin_max));
   if (!(opt.logbin_min < opt.logbin_max) && !std::isnan(opt.logbin_min))
     throw UsageError("--logbin-min must be below --logbin-max");
 }
@@ -57,8 +58,10 @@ FitReport fit_powerlaw(std::span<const double> values, const FitOptions& opt, co
   std::vector<double> kept;
   kept.reserve(values.size());
   for (double v : values) {
-    if (v > opt.scan.xmax) ++r.n_above_xmax;
-    else kept.push_back(v);
+    if (v > opt.scan.xmax)
+      ++r.n_above_xmax;
+    else
+      kept.push_back(v);
   }
   if (r.n_above_xmax) {
     std::ostringstream w;

@@ -53,13 +53,13 @@ struct FitReport {
   std::int64_t n_values = 0;      // values fitted
   std::int64_t n_above_xmax = 0;  // values above --xmax, left out on request (reported, never silent)
   bool integer_data = false;
-  std::string primary;            // name of the primary estimator
-  std::vector<EstimatorResult> mle;  // continuous_mle, then discrete_mle for integer data
+  std::string primary;                  // name of the primary estimator
+  std::vector<EstimatorResult> mle;     // continuous_mle, then discrete_mle for integer data
   std::vector<Comparison> comparisons;  // for the primary estimator's tail
-  LogHistogram histogram;         // of all values fitted
-  LogSlopeOptions logbin_range;   // the range the log-binned slope was fitted over (x_min resolved)
+  LogHistogram histogram;               // of all values fitted
+  LogSlopeOptions logbin_range;         // the range the log-binned slope was fitted over (x_min resolved)
   LogSlopeFit logbin;
-  InputSpread spread;             // over the pooled inputs (add_input_spread; inputs = 0 when not computed)
+  InputSpread spread;  // over the pooled inputs (add_input_spread; inputs = 0 when not computed)
   FitOptions options;
 
   const EstimatorResult& primary_result() const;

@@ -24,8 +24,10 @@ double minimise_1d(const std::function<double(double)>& f, double a, double b, d
       double q = (x - v) * (fx - fw);
       double p = (x - v) * q - (x - w) * r;
       q = 2.0 * (q - r);
-      if (q > 0.0) p = -p;
-      else q = -q;
+      if (q > 0.0)
+        p = -p;
+      else
+        q = -q;
       r = e;
       e = d;
       if (!(std::abs(p) >= std::abs(0.5 * q * r) || p <= q * (a - x) || p >= q * (b - x))) {

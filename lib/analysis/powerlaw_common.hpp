@@ -2,9 +2,9 @@
 // What the continuous and discrete power-law estimators share: the options of the x_min scan, the result
 // of one tail fit, the Kolmogorov-Smirnov distance between the tail's empirical CDF and a model CDF
 // (exact, with branch-and-bound pruning), and a 1-D minimiser.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <algorithm>
 #include <functional>
 #include <limits>
 #include <string>
@@ -22,22 +22,22 @@ enum class KsConvention { two_sided, powerlaw_r };
 struct ScanOptions {
   double xmin = std::numeric_limits<double>::quiet_NaN();  // finite: fixed lower cutoff, no scan
   double xmax = std::numeric_limits<double>::infinity();   // finite: model truncated at xmax (data must lie below)
-  std::int64_t min_tail = 10;  // candidates leaving fewer points in the tail are not tried
+  std::int64_t min_tail = 10;                              // candidates leaving fewer points in the tail are not tried
   KsConvention ks = KsConvention::two_sided;
 };
 
 // One power law fitted to the tail x >= xmin.
 struct TailFit {
   bool ok = false;
-  std::string failure;       // why not ok
-  std::size_t first = 0;     // index in the Sample of the first distinct value in the tail
-  double xmin = 0;           // lower cutoff
+  std::string failure;    // why not ok
+  std::size_t first = 0;  // index in the Sample of the first distinct value in the tail
+  double xmin = 0;        // lower cutoff
   double xmax = std::numeric_limits<double>::infinity();
-  double alpha = 0;          // exponent of the density p(x) ~ x^-alpha
-  double alpha_stderr = 0;   // asymptotic (Fisher) standard error; (alpha-1)/sqrt(n) when untruncated
-  double ks = 0;             // KS distance of the tail to the fitted model
-  double loglik = 0;         // log-likelihood of the tail
-  std::int64_t n_tail = 0;   // points in the tail
+  double alpha = 0;             // exponent of the density p(x) ~ x^-alpha
+  double alpha_stderr = 0;      // asymptotic (Fisher) standard error; (alpha-1)/sqrt(n) when untruncated
+  double ks = 0;                // KS distance of the tail to the fitted model
+  double loglik = 0;            // log-likelihood of the tail
+  std::int64_t n_tail = 0;      // points in the tail
   std::int64_t candidates = 0;  // x_min candidates tried (1 when fixed)
 };
 

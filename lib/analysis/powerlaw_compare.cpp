@@ -140,7 +140,12 @@ Alt fit_exponential(const Tail& t) {
     if (std::isinf(L)) {
       lambda = std::log1p(1.0 / ybar);
     } else {
-      const double theta = minimise_1d([&](double th) { const double lam = std::exp(th); return lam * ybar + ln_norm(lam); }, -30, 10);
+      const double theta = minimise_1d(
+          [&](double th) {
+            const double lam = std::exp(th);
+            return lam * ybar + ln_norm(lam);
+          },
+          -30, 10);
       lambda = std::exp(theta);
     }
     const double nrm = ln_norm(lambda);
@@ -203,7 +208,8 @@ Alt fit_cutoff(const Tail& t, double alpha_pl, double loglik_pl, const std::vect
   const double xtop = t.x.back();
   const double th_lo = std::log(1e-8 / xtop), th_hi = std::log(50.0 / t.xmin);
   const auto log_z = [&](double alpha, double lambda) {
-    return t.discrete ? log_cutoff_sum(alpha, lambda, t.xmin, t.xmax) : log_cutoff_integral(alpha, lambda, t.xmin, t.xmax);
+    return t.discrete ? log_cutoff_sum(alpha, lambda, t.xmin, t.xmax)
+                      : log_cutoff_integral(alpha, lambda, t.xmin, t.xmax);
   };
   const auto neg = [&](const std::vector<double>& p) {
     const double alpha = p[0];
@@ -283,7 +289,8 @@ std::vector<double> nelder_mead(const std::function<double(const std::vector<dou
     for (std::size_t i = 0; i < c->buf.size(); ++i) c->buf[i] = gsl_vector_get(v, i);
     return (*c->f)(c->buf);
   };
-  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> x(gsl_vector_alloc(n), gsl_vector_free), ss(gsl_vector_alloc(n), gsl_vector_free);
+  std::unique_ptr<gsl_vector, void (*)(gsl_vector*)> x(gsl_vector_alloc(n), gsl_vector_free),
+      ss(gsl_vector_alloc(n), gsl_vector_free);
   for (std::size_t i = 0; i < n; ++i) gsl_vector_set(x.get(), i, x0[i]), gsl_vector_set(ss.get(), i, step[i]);
   std::unique_ptr<gsl_multimin_fminimizer, void (*)(gsl_multimin_fminimizer*)> s(
       gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, n), gsl_multimin_fminimizer_free);
@@ -309,10 +316,14 @@ Comparison compare_one(Model model, const Sample& s, const TailFit& fit, const s
                                                  : discrete_logpmf(x, fit.xmin, fit.alpha, fit.xmax));
   c.loglik_powerlaw = weighted_loglik(t, logp_pl);
   Alt a;
-  if (alternative == "exponential") a = fit_exponential(t);
-  else if (alternative == "lognormal") a = fit_lognormal(t);
-  else if (alternative == "cutoff") a = fit_cutoff(t, fit.alpha, c.loglik_powerlaw, logp_pl);
-  else throw std::invalid_argument("unknown alternative '" + alternative + "'");
+  if (alternative == "exponential")
+    a = fit_exponential(t);
+  else if (alternative == "lognormal")
+    a = fit_lognormal(t);
+  else if (alternative == "cutoff")
+    a = fit_cutoff(t, fit.alpha, c.loglik_powerlaw, logp_pl);
+  else
+    throw std::invalid_argument("unknown alternative '" + alternative + "'");
   c.param_names = a.names;
   c.params = a.params;
   if (!a.ok) {
@@ -328,8 +339,10 @@ Comparison compare_one(Model model, const Sample& s, const TailFit& fit, const s
   for (std::size_t k = 0; k < t.x.size(); ++k) ss += t.w[k] * std::pow(logp_pl[k] - a.logp[k] - mean, 2);
   const double sd = std::sqrt(ss / (t.n - 1));
   c.z = sd > 0 ? std::sqrt(t.n) * mean / sd : 0.0;
-  if (c.nested) c.p = c.R < 0 ? 0.5 * gsl_cdf_chisq_Q(-2 * c.R, 1) : 1.0;
-  else c.p = std::erfc(std::abs(c.z) / M_SQRT2);
+  if (c.nested)
+    c.p = c.R < 0 ? 0.5 * gsl_cdf_chisq_Q(-2 * c.R, 1) : 1.0;
+  else
+    c.p = std::erfc(std::abs(c.z) / M_SQRT2);
   c.favours = c.p >= significance ? "neither" : (c.R > 0 ? "power_law" : alternative);
   c.ok = true;
   return c;
@@ -337,7 +350,8 @@ Comparison compare_one(Model model, const Sample& s, const TailFit& fit, const s
 
 std::vector<Comparison> compare_alternatives(Model model, const Sample& s, const TailFit& fit, double significance) {
   std::vector<Comparison> out;
-  for (const char* alt : {"exponential", "lognormal", "cutoff"}) out.push_back(compare_one(model, s, fit, alt, significance));
+  for (const char* alt : {"exponential", "lognormal", "cutoff"})
+    out.push_back(compare_one(model, s, fit, alt, significance));
   return out;
 }
 

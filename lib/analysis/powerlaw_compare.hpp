@@ -17,21 +17,22 @@
 namespace frac::analysis {
 
 struct Comparison {
-  std::string alternative;          // "exponential", "lognormal", "cutoff"
-  bool nested = false;              // true for the cutoff
+  std::string alternative;  // "exponential", "lognormal", "cutoff"
+  bool nested = false;      // true for the cutoff
   bool ok = false;
   std::string failure;
   std::vector<std::string> param_names;
-  std::vector<double> params;       // fitted parameters of the alternative
+  std::vector<double> params;  // fitted parameters of the alternative
   double loglik_powerlaw = 0, loglik_alternative = 0;
-  double R = 0;  // log-likelihood ratio, power law minus alternative
-  double z = 0;  // normalised ratio R / (s sqrt(n)), s = sample sd of the pointwise ratios (Vuong)
-  double p = 1;  // non-nested: two-sided Vuong p = erfc(|z|/sqrt 2); nested: 0.5 Q_chi2_1(-2R) (1 when R >= 0)
+  double R = 0;         // log-likelihood ratio, power law minus alternative
+  double z = 0;         // normalised ratio R / (s sqrt(n)), s = sample sd of the pointwise ratios (Vuong)
+  double p = 1;         // non-nested: two-sided Vuong p = erfc(|z|/sqrt 2); nested: 0.5 Q_chi2_1(-2R) (1 when R >= 0)
   std::string favours;  // "power_law", the alternative's name, or "neither" (p >= significance)
 };
 
 // All three alternatives, for the tail of `fit` (fit.first onwards) of sample s.
-std::vector<Comparison> compare_alternatives(Model model, const Sample& s, const TailFit& fit, double significance = 0.1);
+std::vector<Comparison> compare_alternatives(Model model, const Sample& s, const TailFit& fit,
+                                             double significance = 0.1);
 Comparison compare_one(Model model, const Sample& s, const TailFit& fit, const std::string& alternative,
                        double significance = 0.1);
 

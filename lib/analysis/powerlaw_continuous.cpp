@@ -45,8 +45,7 @@ double core_ks(const Sample& s, std::size_t j, const Core& k, KsConvention conv,
 
 }  // namespace
 
-TailFit fit_continuous_at(const Sample& s, std::size_t j, double xmin, double xmax, KsConvention ks,
-                          double abort_at) {
+TailFit fit_continuous_at(const Sample& s, std::size_t j, double xmin, double xmax, KsConvention ks, double abort_at) {
   TailFit f;
   f.first = j;
   f.xmin = xmin;

@@ -99,7 +99,8 @@ TailFit fit_discrete_at(const Sample& s, std::size_t j, double kmin, double xmax
   const double m = static_cast<double>(c.m);
   // Fisher information per point: d^2 ln Z / d alpha^2 = Var(ln K), by central differences.
   const double h = std::min(1e-3, (c.alpha - 1.0) / 3.0);
-  const double var = (log_zeta_sum(c.alpha + h, kmin, f.xmax) - 2 * c.log_z + log_zeta_sum(c.alpha - h, kmin, f.xmax)) / (h * h);
+  const double var =
+      (log_zeta_sum(c.alpha + h, kmin, f.xmax) - 2 * c.log_z + log_zeta_sum(c.alpha - h, kmin, f.xmax)) / (h * h);
   f.alpha_stderr = var > 0 ? 1.0 / std::sqrt(m * var) : std::numeric_limits<double>::quiet_NaN();
   f.loglik = -m * c.log_z - c.alpha * c.sum_ln;
   f.ok = true;
@@ -122,8 +123,7 @@ TailFit fit_discrete(const Sample& s, const ScanOptions& opt) {
       [&](std::size_t j) { return fit_discrete_at(s, j, s.value[j], opt.xmax, opt.ks); });
 }
 
-DiscreteSampler::DiscreteSampler(double kmin, double alpha, double kmax)
-    : kmin_(kmin), alpha_(alpha), kmax_(kmax) {
+DiscreteSampler::DiscreteSampler(double kmin, double alpha, double kmax) : kmin_(kmin), alpha_(alpha), kmax_(kmax) {
   quiet_gsl();
   zmax_ = std::isinf(kmax) ? 0.0 : hzeta(alpha, kmax + 1);
   z_ = hzeta(alpha, kmin) - zmax_;

@@ -61,7 +61,9 @@ void parallel_for(std::size_t count, unsigned threads, const std::function<void(
 
 namespace {
 
-std::uint64_t stream_id(Model model, int purpose) { return (model == Model::continuous ? 16u : 32u) + static_cast<unsigned>(purpose); }
+std::uint64_t stream_id(Model model, int purpose) {
+  return (model == Model::continuous ? 16u : 32u) + static_cast<unsigned>(purpose);
+}
 
 // Mean and sample standard deviation of the finite entries, in index order.
 std::pair<double, double> mean_std(const std::vector<double>& v) {
@@ -99,8 +101,10 @@ BootstrapResult bootstrap_uncertainty(Model model, const Sample& s, const ScanOp
   });
   double tail_sum = 0;
   for (std::size_t b = 0; b < B; ++b) {
-    if (std::isfinite(r.alpha[b])) tail_sum += static_cast<double>(r.n_tail[b]);
-    else ++r.failed;
+    if (std::isfinite(r.alpha[b]))
+      tail_sum += static_cast<double>(r.n_tail[b]);
+    else
+      ++r.failed;
   }
   std::tie(r.alpha_mean, r.alpha_std) = mean_std(r.alpha);
   std::tie(r.xmin_mean, r.xmin_std) = mean_std(r.xmin);

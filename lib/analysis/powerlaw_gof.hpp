@@ -25,8 +25,8 @@ TailFit fit_model(Model model, const Sample& s, const ScanOptions& opt);
 std::vector<double> draw_model(Model model, const TailFit& fit, std::size_t n, Rng& rng);
 
 struct BootstrapResult {
-  int samples = 0;  // replicates asked for
-  int failed = 0;   // replicates whose fit failed (left out of the statistics)
+  int samples = 0;                  // replicates asked for
+  int failed = 0;                   // replicates whose fit failed (left out of the statistics)
   std::vector<double> alpha, xmin;  // per replicate (NaN when failed)
   std::vector<std::int64_t> n_tail;
   double alpha_mean = 0, alpha_std = 0, xmin_mean = 0, xmin_std = 0, n_tail_mean = 0;
@@ -37,8 +37,8 @@ BootstrapResult bootstrap_uncertainty(Model model, const Sample& s, const ScanOp
 struct GofResult {
   int samples = 0;
   int failed = 0;
-  double p = 0;             // fraction of synthetic KS distances >= the observed one
-  std::vector<double> ks;   // per synthetic set (NaN when its fit failed)
+  double p = 0;            // fraction of synthetic KS distances >= the observed one
+  std::vector<double> ks;  // per synthetic set (NaN when its fit failed)
 };
 GofResult gof_pvalue(Model model, const Sample& s, const TailFit& fit, const ScanOptions& opt, int samples,
                      std::uint64_t seed, unsigned threads = 0);

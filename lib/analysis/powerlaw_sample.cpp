@@ -82,16 +82,21 @@ double draw_below(const Sample& s, std::size_t j, Rng& rng) {
 }
 
 bool all_integers(std::span<const double> x) {
-  return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v) && std::abs(v) < 0x1p53 && v == std::floor(v); });
+  return std::all_of(x.begin(), x.end(),
+                     [](double v) { return std::isfinite(v) && std::abs(v) < 0x1p53 && v == std::floor(v); });
 }
 
 void validate_values(std::span<const double> x, const std::string& what) {
   std::int64_t nan = 0, inf = 0, zero = 0, negative = 0;
   for (double v : x) {
-    if (std::isnan(v)) ++nan;
-    else if (std::isinf(v)) ++inf;
-    else if (v == 0) ++zero;
-    else if (v < 0) ++negative;
+    if (std::isnan(v))
+      ++nan;
+    else if (std::isinf(v))
+      ++inf;
+    else if (v == 0)
+      ++zero;
+    else if (v < 0)
+      ++negative;
   }
   const auto n = static_cast<std::int64_t>(x.size());
   if (nan + inf + zero + negative > 0) {

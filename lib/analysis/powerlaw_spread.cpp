@@ -33,7 +33,8 @@ Estimates estimate(const std::vector<double>& x, const FitReport& pooled) {
   const Model model = pooled.primary_result().model;
   const TailFit f = fit_model(model, make_sample(kept), opt.scan);
   if (f.ok) e.mle = f.alpha;
-  const LogHistogram h = log_histogram(kept, {pooled.histogram.bins_per_decade, pooled.integer_data, pooled.histogram.cluster_unit});
+  const LogHistogram h =
+      log_histogram(kept, {pooled.histogram.bins_per_decade, pooled.integer_data, pooled.histogram.cluster_unit});
   const LogSlopeFit s = fit_log_slope(h, pooled.logbin_range);
   if (s.ok) e.logbin = -s.slope;
   return e;

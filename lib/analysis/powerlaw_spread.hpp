@@ -23,7 +23,7 @@ struct EstimateSpread {
 };
 
 struct InputSpread {
-  int inputs = 0;  // 0: not computed (a single input)
+  int inputs = 0;         // 0: not computed (a single input)
   EstimateSpread mle;     // the primary estimator's alpha
   EstimateSpread logbin;  // -slope of the log-binned density
 };

@@ -126,7 +126,8 @@ Signal parse_signal(std::string_view text, std::string_view option) {
   if (text == "displacement") return Signal::displacement;
   if (text == "velocity") return Signal::velocity;
   if (text == "strain") return Signal::strain;
-  throw UsageError(std::string(option) + ": expected displacement, velocity or strain, got '" + std::string(text) + "'");
+  throw UsageError(std::string(option) + ": expected displacement, velocity or strain, got '" + std::string(text) +
+                   "'");
 }
 Side parse_side(std::string_view text, std::string_view option) {
   if (text == "both") return Side::both;
@@ -203,7 +204,8 @@ namespace {
 void check_front_options(const FrontOptions& opt) {
   if (opt.directions.empty()) throw UsageError("--direction: no propagation direction given");
   if (!(opt.threshold > 0 && opt.threshold < 1))
-    throw UsageError("--threshold: the arrival level is a fraction of the amplitude in (0, 1), got " + number(opt.threshold));
+    throw UsageError("--threshold: the arrival level is a fraction of the amplitude in (0, 1), got " +
+                     number(opt.threshold));
   if (opt.amplitude == AmplitudeRef::absolute && !(opt.amplitude_value > 0 && std::isfinite(opt.amplitude_value)))
     throw UsageError("--amplitude: an absolute amplitude must be a positive number");
   if (!(opt.floor >= 0 && opt.floor < 1)) throw UsageError("--floor: expected a fraction in [0, 1)");
@@ -293,9 +295,12 @@ Vec2 moving_centroid(const io::Group& run, const io::RunInfo& info, const io::Bo
   bool found = false;
   for (std::size_t k = 0; k < info.time.size() && !found; ++k) {
     io::BodyFrame f;
-    if (k == 0) f.velocity = first.velocity;
-    else f.velocity = io::read_series_frame<double>(bodies_group, "velocity", static_cast<long long>(k));
-    if (f.velocity.size() != 2 * bodies) throw InputError(bodies_group.where("velocity") + ": frame size does not match");
+    if (k == 0)
+      f.velocity = first.velocity;
+    else
+      f.velocity = io::read_series_frame<double>(bodies_group, "velocity", static_cast<long long>(k));
+    if (f.velocity.size() != 2 * bodies)
+      throw InputError(bodies_group.where("velocity") + ": frame size does not match");
     double w = 0;
     Vec2 c(0, 0);
     for (std::size_t i = 0; i < bodies; ++i) {
@@ -361,8 +366,10 @@ Track base_track(double dir, const std::vector<Vec2>& where, const WaveMeasureme
       const double along = d.dot(n), across = d.dot(perp);
       if (opt.lateral > 0 && std::abs(across) > opt.lateral) continue;
       value = along;
-      if (opt.side == Side::both) value = std::abs(along);
-      else if (opt.side == Side::forward && along < 0) continue;
+      if (opt.side == Side::both)
+        value = std::abs(along);
+      else if (opt.side == Side::forward && along < 0)
+        continue;
       else if (opt.side == Side::backward) {
         if (along > 0) continue;
         value = -along;
@@ -436,9 +443,10 @@ double receiver_signal(const io::Group& run, const io::BodyFrame& f, const io::B
 }
 
 // One pass over the frames: each bin's RMS signal per frame, into the tracks. Returns the frames' times.
-std::vector<double> record_signals(const io::Group& run, const io::RunInfo& info, const std::vector<std::size_t>& frames,
-                                   const io::BodyFrame& first, const io::Group& bodies_group, const RunMesh& mesh,
-                                   Signal signal, std::vector<Track>& tracks) {
+std::vector<double> record_signals(const io::Group& run, const io::RunInfo& info,
+                                   const std::vector<std::size_t>& frames, const io::BodyFrame& first,
+                                   const io::Group& bodies_group, const RunMesh& mesh, Signal signal,
+                                   std::vector<Track>& tracks) {
   const std::size_t bodies = mesh.bodies;
   std::vector<double> times;
   for (std::size_t fi = 0; fi < frames.size(); ++fi) {
@@ -534,8 +542,8 @@ FrontMeasurement measure_front(const Track& t, double peak, double other, const 
   } else if (!(m.peak > 0)) {
     m.failure = what + ": no signal in the distance range " + number(t.s_min) + " to " + number(t.s_max) + " m";
   } else if (opt.signal != Signal::strain && m.peak < kNoiseFraction * other) {
-    m.failure = what + ": no signal beyond round-off (its peak is " + number(m.peak / other) +
-                " of the other polarisation's)";
+    m.failure =
+        what + ": no signal beyond round-off (its peak is " + number(m.peak / other) + " of the other polarisation's)";
   } else {
     fit_arrivals(t, what, opt, out, m);
   }

@@ -71,7 +71,7 @@ struct FrontOptions {
   // m, reference length: the automatic range starts at least this far from the source (times the stretch
   // along the direction), e.g. 3 widths of the initial pulse, which sits in the first frame.
   double near_field = 0;
-  double threshold = 0.5;                 // fraction of the amplitude that marks the arrival, in (0, 1)
+  double threshold = 0.5;  // fraction of the amplitude that marks the arrival, in (0, 1)
   AmplitudeRef amplitude = AmplitudeRef::local;
   double amplitude_value = 0;  // the amplitude, for AmplitudeRef::absolute (m, m/s or 1 by signal)
   double floor = 1e-3;         // bins whose peak is below floor × the strongest bin's have no arrival
@@ -82,7 +82,7 @@ struct FrontOptions {
   double t_min = -std::numeric_limits<double>::infinity();  // s, frames used
   double t_max = std::numeric_limits<double>::infinity();
   Side side = Side::both;
-  double reject = 4.0;     // drop arrivals further than reject × robust sigma from the line; 0: keep all
+  double reject = 4.0;      // drop arrivals further than reject × robust sigma from the line; 0: keep all
   bool interpolate = true;  // sub-frame arrival times (else: the first frame at or above the level)
   Arrival arrival = Arrival::threshold;
 };
@@ -119,15 +119,15 @@ struct FrontMeasurement {
   WaveMode mode = WaveMode::longitudinal;
   double direction = 0;  // rad, or kRadial
   bool ok = false;
-  std::string failure;   // why not ok
+  std::string failure;          // why not ok
   double s_min = 0, s_max = 0;  // m, distance range used
   // One entry per receiver bin in the range: mean distance (m), arrival time (s; NaN: none), the bin's
   // peak signal, and whether the fit used it.
   std::vector<double> distance, arrival, amplitude;
   std::vector<std::uint8_t> used;
-  double peak = 0;        // strongest bin signal
-  double level = kNaN;    // arrival level when it is one number (global or absolute amplitude)
-  LineFit fit;            // arrival = intercept + slope · distance
+  double peak = 0;             // strongest bin signal
+  double level = kNaN;         // arrival level when it is one number (global or absolute amplitude)
+  LineFit fit;                 // arrival = intercept + slope · distance
   double speed = kNaN;         // m/s, lab, = 1/slope
   double speed_stderr = kNaN;  // m/s, standard error of the fit, = slope_stderr / slope^2
   // Worst-case speed error if every arrival were rounded up to the next frame (no interpolation):
@@ -141,10 +141,10 @@ struct WaveMeasurement {
   // the first frame in which something moves)
   std::string source_from;
   Signal signal = Signal::displacement;
-  double frame_interval = 0;     // s, median spacing of the frames used
-  std::size_t frames = 0;        // frames used
-  double bin = 0;                // m
-  std::string model;             // "rubber" or "dem"
+  double frame_interval = 0;  // s, median spacing of the frames used
+  std::size_t frames = 0;     // frames used
+  double bin = 0;             // m
+  std::string model;          // "rubber" or "dem"
   // Homogeneous deformation of the first frame against the mesh's reference positions, least squares over
   // the intact links: p_j - p_i = F (r_j - r_i). For the rubber lattice, diag(lambda_x, lambda_y) when the
   // sheet starts homogeneously pre-stretched.

@@ -27,7 +27,7 @@ const std::initializer_list<const char*> kKeyThickness = {"material.thickness"};
 const std::initializer_list<const char*> kKeyShortWidth = {"law.short_width", "material.short_width"};
 const std::initializer_list<const char*> kKeyCutoff = {"law.cutoff_length", "material.cutoff_length"};
 const std::initializer_list<const char*> kKeyCutoffWidth = {"law.cutoff_width", "material.cutoff_width"};
-const std::initializer_list<const char*> kKeyCutoffKind = {"law.cutoff"};  // "none": no Fermi cut-off
+const std::initializer_list<const char*> kKeyCutoffKind = {"law.cutoff"};    // "none": no Fermi cut-off
 const std::initializer_list<const char*> kKeyStretch = {"loading.stretch"};  // "1.5x3"
 const std::initializer_list<const char*> kKeyStretchX = {"loading.stretch_x", "loading.lambda_x"};
 const std::initializer_list<const char*> kKeyStretchY = {"loading.stretch_y", "loading.lambda_y"};
@@ -194,7 +194,8 @@ io::SpeedsRecord predict_speeds(const TheoryInputs& in) {
   std::vector<std::string> skipped;
   io::SpeedsRecord r = predict(t, skipped);
   if (r.predicted.empty())
-    throw UsageError("--direction: no prediction for " + (skipped.empty() ? std::string("these directions") : skipped[0]));
+    throw UsageError("--direction: no prediction for " +
+                     (skipped.empty() ? std::string("these directions") : skipped[0]));
   return r;
 }
 namespace {
@@ -298,8 +299,9 @@ io::SpeedsRecord measured_record(const io::Group& run, const WaveMeasurement& m,
     r.measured.push_back(std::move(x));
   }
   if (std::none_of(m.fronts.begin(), m.fronts.end(), [](const FrontMeasurement& f) { return f.ok; }))
-    throw InputError(run.file() + ": no front could be timed" +
-                     (m.fronts.empty() ? std::string(" (no signal in the distance range)") : ": " + m.fronts[0].failure));
+    throw InputError(
+        run.file() + ": no front could be timed" +
+        (m.fronts.empty() ? std::string(" (no signal in the distance range)") : ": " + m.fronts[0].failure));
   return r;
 }
 
@@ -331,14 +333,16 @@ void rubber_theory_inputs(const io::Group& run, const RunDefaults& d, const RunR
   fill(th.cutoff_width, kKeyCutoffWidth, "cut-off width");
   if (const auto f = lookup(params, kKeyCutoffKind); f && f->value == "none" && !req.theory.cutoff_width)
     th.cutoff_width = 0.0;  // h = 1: nothing stiffens the far field before u_c
-  if (!th.spacing && run.has_attr("spacing", "particles/nodes")) th.spacing = run.attr_double("spacing", "particles/nodes");
+  if (!th.spacing && run.has_attr("spacing", "particles/nodes"))
+    th.spacing = run.attr_double("spacing", "particles/nodes");
   if (!th.rows_along && run.has_attr("rows_along", "particles/nodes"))
     th.rows_along = run.attr_string("rows_along", "particles/nodes");
   if (!th.stretch) {
     if (const auto f = lookup(params, kKeyStretch)) {
       const auto x = f->value.find_first_of("xX");
       if (x != std::string::npos) {
-        th.stretch = Stretch{to_number({f->key, f->value.substr(0, x)}, from), to_number({f->key, f->value.substr(x + 1)}, from)};
+        th.stretch = Stretch{to_number({f->key, f->value.substr(0, x)}, from),
+                             to_number({f->key, f->value.substr(x + 1)}, from)};
         d.note("stretch", *f);
       }
     }
@@ -357,9 +361,9 @@ void rubber_theory_inputs(const io::Group& run, const RunDefaults& d, const RunR
     const double shear = std::max(std::abs(F(0, 1)), std::abs(F(1, 0)));
     d.notes.push_back("stretch " + number(F(0, 0)) + "x" + number(F(1, 1)) +
                       " from the first frame (least-squares deformation of the links)" +
-                      (shear > 1e-3 * std::max(F(0, 0), F(1, 1)) ? "; it is not diagonal (off-diagonal " +
-                                                                         number(shear) + "): give --stretch"
-                                                                   : ""));
+                      (shear > 1e-3 * std::max(F(0, 0), F(1, 1))
+                           ? "; it is not diagonal (off-diagonal " + number(shear) + "): give --stretch"
+                           : ""));
   }
   if (th.theory.empty() && th.a && th.b) th.theory = "mooney-rivlin";
 }
@@ -413,12 +417,15 @@ io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::
   TheoryInputs th = req.theory;
   th.directions.clear();
   for (const auto& f : m.fronts) th.directions.push_back(f.direction);
-  if (rubber) rubber_theory_inputs(run, d, req, m, th);
-  else dem_theory_inputs(d, th);
+  if (rubber)
+    rubber_theory_inputs(run, d, req, m, th);
+  else
+    dem_theory_inputs(d, th);
 
   if (th.theory.empty()) {
-    r.comparison = rubber ? "not compared: no prediction (give --a and --b, or a run that records material.a and material.b)"
-                          : "not compared: no prediction (give --young and --poisson measured on the DEM, and --density)";
+    r.comparison =
+        rubber ? "not compared: no prediction (give --a and --b, or a run that records material.a and material.b)"
+               : "not compared: no prediction (give --young and --poisson measured on the DEM, and --density)";
     return r;
   }
   if (th.theory == "mooney-rivlin" && !rubber)
@@ -443,7 +450,8 @@ io::SpeedsRecord measure_and_compare(const io::Group& run, RunRequest req, std::
     return r;
   }
   compare_speeds(r, rubber, d);
-  r.comparison = r.lattice_regime == "unchecked" ? "compared (lattice not checked: " + r.lattice_message + ")" : "compared";
+  r.comparison =
+      r.lattice_regime == "unchecked" ? "compared (lattice not checked: " + r.lattice_message + ")" : "compared";
   return r;
 }
 

@@ -22,7 +22,7 @@ struct TheoryInputs {
   // "" = automatic (a run: Mooney-Rivlin for rubber when a and b are known, plane stress for the DEM when
   // K and nu are given), "mooney-rivlin", or "dem" (plane stress from measured elastic constants).
   std::string theory;
-  std::optional<double> a, b, density;   // Mooney-Rivlin: m^2 s^-2, 1, kg m^-2 (areal)
+  std::optional<double> a, b, density;  // Mooney-Rivlin: m^2 s^-2, 1, kg m^-2 (areal)
   std::optional<Stretch> stretch;
   std::optional<double> young, poisson;  // DEM: Pa, 1; density in kg m^-3 (3D) for the DEM
   // Lattice check (Mooney-Rivlin only): spacing Delta, short-bond width u_s, cut-off u_c and its width, m.

@@ -9,7 +9,8 @@ namespace frac {
 
 void parse_checkpoint_every(const std::string& text, const std::string& option, CheckpointOptions& out) {
   const auto bad = [&] {
-    return UsageError(option + " '" + text + "': expected a number of steps (e.g. 10000), a wall-clock time (e.g. "
+    return UsageError(option + " '" + text +
+                      "': expected a number of steps (e.g. 10000), a wall-clock time (e.g. "
                       "600s, 15min, 2h) or 0");
   };
   const std::size_t digits = text.find_first_not_of("0123456789.");

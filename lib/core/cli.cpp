@@ -7,8 +7,8 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -45,13 +45,14 @@ void add_common(po::options_description& desc, CommonOptions& common, unsigned w
   auto add = desc.add_options();
   if (which & kOutput) add("output,o", po::value(&common.output)->default_value("-"), output_help);
   if (which & kSeed)
-    add("seed",
-        po::value<std::string>()->default_value("1")->notifier(
-            [&common](const std::string& t) { common.seed = parse_seed(t, "--seed"); }),
+    add("seed", po::value<std::string>()->default_value("1")->notifier([&common](const std::string& t) {
+      common.seed = parse_seed(t, "--seed");
+    }),
         "seed of the random generator (0 to 2^64 - 1)");
   if (which & kQuiet) add("quiet,q", po::bool_switch(&common.quiet), "print nothing but errors");
   if (which & kConfig)
-    add("config", po::value(&common.config), "read options from FILE: 'key = value' lines, key the long option name "
+    add("config", po::value(&common.config),
+        "read options from FILE: 'key = value' lines, key the long option name "
         "(the command line wins)");
   if (which & kThreads)
     add("threads", po::value(&common.threads)->default_value(1)->notifier([](int t) { check_threads(t, "--threads"); }),
@@ -162,8 +163,10 @@ po::variables_map parse(int argc, const char* const* argv, const ToolSpec& spec,
                        " input; or an option before them is missing its value)");
     }
     if (vm.count("help")) {
-      std::cout << "Usage: " << spec.name << " " << spec.usage << "\n\n" << spec.summary << "\n\n"
-                << all << "\nExample:\n" << spec.example << "\n";
+      std::cout << "Usage: " << spec.name << " " << spec.usage << "\n\n"
+                << spec.summary << "\n\n"
+                << all << "\nExample:\n"
+                << spec.example << "\n";
       throw Exit{kExitOk};
     }
     if (vm.count("version")) {
@@ -213,8 +216,8 @@ std::vector<const char*> split_overrides(int argc, const char* const* argv,
     // (a repeated key would silently take its last value)
     for (auto it = overrides.begin() + static_cast<std::ptrdiff_t>(first); it != overrides.end(); ++it)
       if (it->first == o.first)
-        throw UsageError("--" + o.first + ": given twice on the command line ('" + it->second + "', then '" +
-                         o.second + "')");
+        throw UsageError("--" + o.first + ": given twice on the command line ('" + it->second + "', then '" + o.second +
+                         "')");
     overrides.push_back(std::move(o));
   }
   return rest;
@@ -299,7 +302,8 @@ int run_subcommands(const std::string& tool, int argc, const char* const* argv,
     if (first.empty() || first == "--help" || first == "-h") {
       std::ostream& out = first.empty() ? std::cerr : std::cout;
       out << "Usage: " << tool << " COMMAND [options]\n\nCommands:\n";
-      for (const auto& [name, entry] : table) out << "  " << name << std::string(14 - std::min<std::size_t>(13, name.size()), ' ') << entry.first << "\n";
+      for (const auto& [name, entry] : table)
+        out << "  " << name << std::string(14 - std::min<std::size_t>(13, name.size()), ' ') << entry.first << "\n";
       out << "\n'" << tool << " COMMAND --help' describes a command, with an example.\n";
       return first.empty() ? kExitBadInput : kExitOk;
     }
@@ -314,8 +318,10 @@ std::string command_line(int argc, const char* const* argv) {
   for (int k = 0; k < argc; ++k) {
     const std::string arg = argv[k];
     if (k) out += ' ';
-    const bool plain = !arg.empty() && arg.find_first_not_of(
-        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,+@%") == std::string::npos;
+    const bool plain =
+        !arg.empty() &&
+        arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,+@%") ==
+            std::string::npos;
     if (plain) {
       out += arg;
     } else {
@@ -365,16 +371,24 @@ std::vector<std::pair<std::string, std::string>> resolved_options(const po::vari
     const auto& v = value.value();
     std::ostringstream text;
     text.precision(17);
-    if (const auto* s = boost::any_cast<std::string>(&v)) text << *s;
-    else if (const auto* d = boost::any_cast<double>(&v)) text << *d;
-    else if (const auto* i = boost::any_cast<int>(&v)) text << *i;
-    else if (const auto* l = boost::any_cast<long>(&v)) text << *l;
-    else if (const auto* ll = boost::any_cast<long long>(&v)) text << *ll;
-    else if (const auto* u = boost::any_cast<unsigned long>(&v)) text << *u;
-    else if (const auto* b = boost::any_cast<bool>(&v)) text << (*b ? "true" : "false");
+    if (const auto* s = boost::any_cast<std::string>(&v))
+      text << *s;
+    else if (const auto* d = boost::any_cast<double>(&v))
+      text << *d;
+    else if (const auto* i = boost::any_cast<int>(&v))
+      text << *i;
+    else if (const auto* l = boost::any_cast<long>(&v))
+      text << *l;
+    else if (const auto* ll = boost::any_cast<long long>(&v))
+      text << *ll;
+    else if (const auto* u = boost::any_cast<unsigned long>(&v))
+      text << *u;
+    else if (const auto* b = boost::any_cast<bool>(&v))
+      text << (*b ? "true" : "false");
     else if (const auto* vs = boost::any_cast<std::vector<std::string>>(&v)) {
       for (std::size_t k = 0; k < vs->size(); ++k) text << (k ? " " : "") << (*vs)[k];
-    } else text << "?";
+    } else
+      text << "?";
     out.emplace_back(key, text.str());
   }
   return out;

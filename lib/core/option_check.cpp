@@ -19,7 +19,8 @@ void check_in(double x, const std::string& option, const Interval& range) {
   if (!range.contains(x)) throw UsageError(option + ": must lie in " + range.text() + ", got " + format_value(x));
 }
 
-void check_one_of(const std::string& value, std::initializer_list<std::string_view> choices, const std::string& option) {
+void check_one_of(const std::string& value, std::initializer_list<std::string_view> choices,
+                  const std::string& option) {
   std::string list;
   std::size_t k = 0;
   for (const std::string_view c : choices) {

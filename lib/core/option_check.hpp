@@ -12,7 +12,7 @@ struct Interval {
   double lo, hi;
   bool lo_open = false, hi_open = false;
   bool contains(double x) const;
-  std::string text() const;  // "(0, 1)", "[0, 1e+06]"
+  std::string text() const;                                                            // "(0, 1)", "[0, 1e+06]"
   static Interval closed(double lo, double hi) { return {lo, hi, false, false}; }      // [lo, hi]
   static Interval open(double lo, double hi) { return {lo, hi, true, true}; }          // (lo, hi)
   static Interval open_closed(double lo, double hi) { return {lo, hi, true, false}; }  // (lo, hi]

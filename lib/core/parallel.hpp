@@ -7,7 +7,6 @@
 #include <memory>
 #include <vector>
 
-
 namespace frac {
 
 inline constexpr std::size_t kMinParallelItems = 256;
@@ -171,8 +170,7 @@ class PartLayout {
     const auto team = static_cast<std::size_t>(thread_count());
     for (auto t = static_cast<std::size_t>(thread_index()); t < threads_; t += team) {
       const Range r = static_range(len_, t, threads_);
-      for (std::size_t b = 0; b < blocks_; ++b)
-        range(b * len_ + r.first, b * len_ + r.last, gap_ * (b * threads_ + t));
+      for (std::size_t b = 0; b < blocks_; ++b) range(b * len_ + r.first, b * len_ + r.last, gap_ * (b * threads_ + t));
     }
   }
 

@@ -100,7 +100,8 @@ void write_phase_table(std::ostream& out, const std::string& what, const std::ve
                   total > 0 ? 100 * t.seconds / total : 0.0, 1e6 * t.seconds / static_cast<double>(t.calls));
     out << line;
   }
-  std::snprintf(line, sizeof line, "  total %.4f s, serial phases %.2f%%\n", total, total > 0 ? 100 * serial / total : 0.0);
+  std::snprintf(line, sizeof line, "  total %.4f s, serial phases %.2f%%\n", total,
+                total > 0 ? 100 * serial / total : 0.0);
   out << line;
 }
 

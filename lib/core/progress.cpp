@@ -1,14 +1,18 @@
 #include "core/progress.hpp"
 
+#include <unistd.h>
 #include <cstdio>
 #include <iostream>
-#include <unistd.h>
 
 namespace frac {
 
 Progress::Progress(std::string tool, bool quiet, double interval_s)
-    : tool_(std::move(tool)), quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), interval_(interval_s),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : tool_(std::move(tool)),
+      quiet_(quiet),
+      tty_(isatty(STDERR_FILENO) != 0),
+      interval_(interval_s),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 Progress::~Progress() {
   if (live_) std::cerr << "\n";

@@ -24,14 +24,18 @@ std::string provenance_line(const ToolRun& run) {
   line += " command=";
   for (const char c : run.command_line) {
     const auto u = static_cast<unsigned char>(c);
-    if (c == '\\') line += "\\\\";
-    else if (c == '\n') line += "\\n";
-    else if (c == '\t') line += "\\t";
+    if (c == '\\')
+      line += "\\\\";
+    else if (c == '\n')
+      line += "\\n";
+    else if (c == '\t')
+      line += "\\t";
     else if (u < 0x20 || u == 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02x", u);
       line += hex;
-    } else line += c;
+    } else
+      line += c;
   }
   return line;
 }

@@ -18,7 +18,7 @@ struct ProvenanceEntry {
 
 // One part of a run continued from checkpoints: when and how it started, and from which step.
 struct RunSegment {
-  std::string started;       // UTC, ISO 8601
+  std::string started;  // UTC, ISO 8601
   std::string command_line;
   long long first_step = 0;
 };
@@ -27,11 +27,11 @@ struct RunSegment {
 struct ToolRun {
   std::string tool;
   std::string command_line;
-  std::string started = "";                                  // filled by start_run
-  std::string seed;                                          // "" when unused
+  std::string started = "";                                     // filled by start_run
+  std::string seed;                                             // "" when unused
   std::vector<std::pair<std::string, std::string>> parameters;  // resolved options
-  std::vector<std::string> input_uuids;                      // uuids of the files read
-  std::vector<ProvenanceEntry> input_history;                // their histories, concatenated
+  std::vector<std::string> input_uuids;                         // uuids of the files read
+  std::vector<ProvenanceEntry> input_history;                   // their histories, concatenated
   std::vector<RunSegment> segments;  // a run resumed from checkpoints: its parts, the first from step 0; else empty
 };
 

@@ -34,8 +34,7 @@ Scene Scene::parse(const std::string& text, const std::string& name) {
       if (opt.string_key.find('.') == std::string::npos)
         throw InputError(name + ": key '" + opt.string_key + "' is outside a [section]");
       if (opt.value.size() != 1) throw InputError(name + ": key '" + opt.string_key + "' has no value");
-      if (scene.values_.count(opt.string_key))
-        throw InputError(name + ": key '" + opt.string_key + "' is given twice");
+      if (scene.values_.count(opt.string_key)) throw InputError(name + ": key '" + opt.string_key + "' is given twice");
       scene.values_[opt.string_key] = opt.value.front();
     }
   } catch (const po::error& e) {

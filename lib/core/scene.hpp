@@ -30,9 +30,9 @@ class Scene {
   // Getters: the value, or the default when the key is absent; UsageError naming the key and the
   // scene when the value does not parse or is out of range.
   double number(std::string_view key, double fallback);
-  double number(std::string_view key);  // required
-  double positive(std::string_view key, double fallback);     // > 0
-  double non_negative(std::string_view key, double fallback);  // >= 0
+  double number(std::string_view key);                                      // required
+  double positive(std::string_view key, double fallback);                   // > 0
+  double non_negative(std::string_view key, double fallback);               // >= 0
   double in(std::string_view key, double fallback, const Interval& range);  // finite, in `range`
   long long integer(std::string_view key, long long fallback);
   bool flag(std::string_view key, bool fallback);  // on|off|true|false|yes|no|1|0

@@ -33,8 +33,9 @@ class StateArchive {
   }
   // Arrays of other integers, stored as int64 (loading: InputError when a value does not fit T).
   template <class T>
-    requires(std::is_integral_v<T> && !std::is_same_v<T, std::int64_t> && !std::is_same_v<T, std::uint8_t>)
-  void array(std::string_view name, std::vector<T>& v, std::size_t size = kAnySize);
+  requires(std::is_integral_v<T> && !std::is_same_v<T, std::int64_t> &&
+           !std::is_same_v<T, std::uint8_t>) void array(std::string_view name, std::vector<T>& v,
+                                                        std::size_t size = kAnySize);
 
   // One number, as an array of one.
   template <class T>
@@ -121,8 +122,9 @@ class StateArchive {
 };
 
 template <class T>
-  requires(std::is_integral_v<T> && !std::is_same_v<T, std::int64_t> && !std::is_same_v<T, std::uint8_t>)
-void StateArchive::array(std::string_view name, std::vector<T>& v, std::size_t size) {
+requires(std::is_integral_v<T> && !std::is_same_v<T, std::int64_t> &&
+         !std::is_same_v<T, std::uint8_t>) void StateArchive::array(std::string_view name, std::vector<T>& v,
+                                                                    std::size_t size) {
   std::vector<std::int64_t> wide(v.begin(), v.end());
   array(name, wide, size);
   if (!loading()) return;

@@ -9,12 +9,16 @@ void StateRegistry::cell_field(CellField field) {
   fields_.push_back(std::move(field));
 }
 
-void StateRegistry::other(std::function<void(StateArchive&)> visit) { entries_.push_back({SIZE_MAX, std::move(visit)}); }
+void StateRegistry::other(std::function<void(StateArchive&)> visit) {
+  entries_.push_back({SIZE_MAX, std::move(visit)});
+}
 
 void StateRegistry::visit(StateArchive& archive) const {
   for (const Entry& e : entries_) {
-    if (e.field == SIZE_MAX) e.visit(archive);
-    else visit_field(fields_[e.field], archive);
+    if (e.field == SIZE_MAX)
+      e.visit(archive);
+    else
+      visit_field(fields_[e.field], archive);
   }
 }
 

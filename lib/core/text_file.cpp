@@ -13,7 +13,7 @@ std::string read_text_file(const std::string& path, const std::string& what, std
   const bool standard_input = path == "-";
   const std::string name = standard_input ? "-" : path;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(standard_input ? stdin : std::fopen(path.c_str(), "rb"),
-                                                      standard_input ? [](std::FILE*) { return 0; } : std::fclose);
+                                                       standard_input ? [](std::FILE*) { return 0; } : std::fclose);
   if (!file) throw InputError(name + ": cannot read " + what + " (" + std::strerror(errno) + ")");
   std::string text;
   char buffer[1 << 14];
@@ -26,7 +26,8 @@ std::string read_text_file(const std::string& path, const std::string& what, std
     if (n < sizeof buffer) break;
   }
   if (std::ferror(file.get()))
-    throw InputError(name + ": cannot read " + what + " (" + (errno == EISDIR ? "a folder" : std::strerror(errno)) + ")");
+    throw InputError(name + ": cannot read " + what + " (" + (errno == EISDIR ? "a folder" : std::strerror(errno)) +
+                     ")");
   return text;
 }
 

@@ -38,12 +38,12 @@ inline double wrap_angle(double x) {
 // The state of one beam and the forces it makes. Inputs: centroid separation d = c_j − c_i, the unit
 // initial axis e0, the cells' accumulated angles (0 in the reference state).
 struct BeamResponse {
-  double length;      // l, m
-  double strain;      // ε = (l − l0)/l0
-  double theta_i, theta_j;  // end rotations relative to the current axis, rad
-  double fx, fy;      // force on i, N (j receives −F)
+  double length;              // l, m
+  double strain;              // ε = (l − l0)/l0
+  double theta_i, theta_j;    // end rotations relative to the current axis, rad
+  double fx, fy;              // force on i, N (j receives −F)
   double torque_i, torque_j;  // N m
-  double energy;      // elastic energy, J
+  double energy;              // elastic energy, J
 };
 
 // The current beam axis: length l, unit vector e, and the rotation since the reference state e0 as
@@ -80,8 +80,8 @@ inline BeamResponse beam_response_at(const BeamAxis& axis, double ti, double tj,
   return r;
 }
 
-inline BeamResponse beam_response(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j,
-                                  double l0, const BeamStiffness& k) {
+inline BeamResponse beam_response(double dx, double dy, double e0x, double e0y, double phi_i, double phi_j, double l0,
+                                  const BeamStiffness& k) {
   const BeamAxis axis = beam_axis(dx, dy, e0x, e0y);
   // Rotation of the axis since the reference state, as a wrapped difference (never raw atan2 values);
   // it is small for an intact beam, where atan2_near_zero is fast.

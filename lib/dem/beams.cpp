@@ -100,7 +100,8 @@ void Beams::index_cells() {
 Beams::Entry Beams::find(std::size_t b) const {
   for (const BeamTable* t : {&active_, &retired_}) {
     const auto hit = std::lower_bound(t->beam.begin(), t->beam.end(), static_cast<std::int32_t>(b));
-    if (hit != t->beam.end() && *hit == static_cast<std::int32_t>(b)) return {t, static_cast<std::size_t>(hit - t->beam.begin())};
+    if (hit != t->beam.end() && *hit == static_cast<std::int32_t>(b))
+      return {t, static_cast<std::size_t>(hit - t->beam.begin())};
   }
   throw RuntimeError("beams: no beam " + std::to_string(b));
 }
@@ -111,7 +112,7 @@ void Beams::unindex(const BeamTable& t, std::size_t k) {
     CellBeam* first = beams_of_.data() + cell_start_[static_cast<std::size_t>(c)];
     CellBeam* last = first + cell_count_[static_cast<std::size_t>(c)];
     CellBeam* hit = std::find_if(first, last, [b](const CellBeam& e) { return e.beam == b; });
-    if (hit == last) continue;  // not listed (cannot happen for an intact beam)
+    if (hit == last) continue;      // not listed (cannot happen for an intact beam)
     std::copy(hit + 1, last, hit);  // the others keep their order
     --cell_count_[static_cast<std::size_t>(c)];
   }
@@ -122,8 +123,7 @@ BeamResponse Beams::response(const BeamTable& t, std::size_t k, std::span<const 
   const double* x = q.data();
   const double* y = x + n_;
   const double* phi = y + n_;
-  return beam_response(x[j] - x[i], y[j] - y[i], t.e0x[k], t.e0y[k], phi[i], phi[j], t.l0[k],
-                       Entry{&t, k}.stiffness());
+  return beam_response(x[j] - x[i], y[j] - y[i], t.e0x[k], t.e0y[k], phi[i], phi[j], t.l0[k], Entry{&t, k}.stiffness());
 }
 
 void Beams::add_forces(std::span<const double> q, std::span<double> f) const { forces(q, f, true); }
@@ -156,12 +156,14 @@ struct ResponseBlock {
 // stored, the compiler leaves out: the strain's division, the energy's products) into `out`, and whether the
 // formula applies into `near`.
 template <BeamResponsePart P>
-FRACTURE_VECTOR_KERNEL void respond_near_reference(
-    std::size_t count, const double* __restrict dx, const double* __restrict dy, const double* __restrict phi_i,
-    const double* __restrict phi_j, const double* __restrict e0x, const double* __restrict e0y,
-    const double* __restrict l0, const double* __restrict alpha, const double* __restrict beta,
-    const double* __restrict delta, double* __restrict out0, double* __restrict out1, double* __restrict out2,
-    double* __restrict out3, double* __restrict near) {
+FRACTURE_VECTOR_KERNEL void respond_near_reference(std::size_t count, const double* __restrict dx,
+                                                   const double* __restrict dy, const double* __restrict phi_i,
+                                                   const double* __restrict phi_j, const double* __restrict e0x,
+                                                   const double* __restrict e0y, const double* __restrict l0,
+                                                   const double* __restrict alpha, const double* __restrict beta,
+                                                   const double* __restrict delta, double* __restrict out0,
+                                                   double* __restrict out1, double* __restrict out2,
+                                                   double* __restrict out3, double* __restrict near) {
 #pragma omp simd
   for (std::size_t k = 0; k < count; ++k) {
     BeamResponse r;
@@ -185,8 +187,8 @@ FRACTURE_VECTOR_KERNEL void respond_near_reference(
 template <BeamResponsePart P>
 void respond_block(ResponseBlock& blk, std::size_t count) {
   double* out0 = P == BeamResponsePart::forces ? blk.fx : P == BeamResponsePart::energy ? blk.energy : blk.strain;
-  respond_near_reference<P>(count, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, blk.alpha,
-                            blk.beta, blk.delta, out0, blk.fy, blk.torque_i, blk.torque_j, blk.near);
+  respond_near_reference<P>(count, blk.dx, blk.dy, blk.phi_i, blk.phi_j, blk.e0x, blk.e0y, blk.l0, blk.alpha, blk.beta,
+                            blk.delta, out0, blk.fy, blk.torque_i, blk.torque_j, blk.near);
 }
 
 // breaking_bound_holds over the first `count` beams of a block, into `holds` (1: the beam holds for sure).
@@ -231,8 +233,8 @@ void Beams::each_block(std::span<const double> q, const BeamTable& t, std::size_
 }
 
 template <BeamResponsePart P, class Use>
-void Beams::each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
-                          Use&& use, bool broken_too) const {
+void Beams::each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last, Use&& use,
+                          bool broken_too) const {
   const bool some_broken = !broken_too && &t == &active_ && broken_in_active_ > 0;
   each_block(q, t, first, last, [&](std::size_t start, std::size_t count, ResponseBlock& blk) {
     respond_block<P>(blk, count);
@@ -265,9 +267,10 @@ void Beams::beam_pass(std::span<const double> q, std::size_t t, std::size_t nt) 
   // the same bits whatever the thread count.
   BeamForce* out = force_.data();
   const Range mine = static_range(active_.size(), t, nt);
-  each_response<BeamResponsePart::forces>(
-      q, active_, mine.first, mine.last,
-      [&](std::size_t, std::size_t b, const BeamResponse& r) { out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}}; });
+  each_response<BeamResponsePart::forces>(q, active_, mine.first, mine.last,
+                                          [&](std::size_t, std::size_t b, const BeamResponse& r) {
+                                            out[b] = {r.fx, r.fy, {r.torque_i, r.torque_j}};
+                                          });
 }
 
 void Beams::gather(std::span<double> f, bool add, std::size_t t, std::size_t nt) const {
@@ -328,8 +331,8 @@ void Beams::strains(std::span<const double> q, std::span<double> out) const {
     for (const BeamTable* t : {&active_, &retired_}) {
       const Range mine = this_thread_range(t->size());
       each_response<BeamResponsePart::strain>(
-          q, *t, mine.first, mine.last, [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; },
-          true);
+          q, *t, mine.first, mine.last,
+          [&](std::size_t, std::size_t b, const BeamResponse& r) { strain[b] = r.strain; }, true);
     }
   });
 }
@@ -368,8 +371,8 @@ void Beams::find_breaks(std::size_t t, std::size_t nt) {
       const auto b = static_cast<std::size_t>(active_.beam[start + k]);
       if (intact_[b] == 0) continue;  // broke before, not yet out of the list
       Verdict v{0, 0.0};
-      v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k],
-                                   blk.l0[k], Entry{&active_, start + k}.stiffness(), t_eps, t_theta, v.energy);
+      v.mode = exact_breaking_mode(blk.dx[k], blk.dy[k], blk.e0x[k], blk.e0y[k], blk.phi_i[k], blk.phi_j[k], blk.l0[k],
+                                   Entry{&active_, start + k}.stiffness(), t_eps, t_theta, v.energy);
       if (v.mode != 0) out.push_back({start + k, v});
     }
   });
@@ -444,8 +447,10 @@ void Beams::visit_state(StateArchive& archive) {
   std::vector<std::uint8_t> listed(size(), 0);
   for (const std::int32_t b : active) listed[static_cast<std::size_t>(b)] = 1;
   const BeamTable none;
-  active_ = BeamTable::merged(all, none, [&](const BeamTable& t, std::size_t k) { return listed[static_cast<std::size_t>(t.beam[k])] == 1; });
-  retired_ = BeamTable::merged(all, none, [&](const BeamTable& t, std::size_t k) { return listed[static_cast<std::size_t>(t.beam[k])] == 0; });
+  active_ = BeamTable::merged(
+      all, none, [&](const BeamTable& t, std::size_t k) { return listed[static_cast<std::size_t>(t.beam[k])] == 1; });
+  retired_ = BeamTable::merged(
+      all, none, [&](const BeamTable& t, std::size_t k) { return listed[static_cast<std::size_t>(t.beam[k])] == 0; });
   broken_in_active_ = active.size() - in_active;
   index_cells();
   for (std::size_t k = 0; k < active_.size(); ++k)

@@ -16,8 +16,8 @@ namespace frac::dem {
 
 struct BeamBreak {
   std::int64_t beam;
-  int mode;        // 1 stretching, 2 bending
-  double energy;   // elastic energy it held, J
+  int mode;       // 1 stretching, 2 bending
+  double energy;  // elastic energy it held, J
 };
 
 // The part of a beam's response a loop over the beams reads (Beams' loops compute only that).
@@ -84,7 +84,7 @@ class Beams {
     std::size_t size() const { return beam.size(); }
     void resize(std::size_t n);
     void copy_entry(std::size_t to, const BeamTable& source, std::size_t from);  // entry `to` := source's `from`
-    void erase(std::size_t k);                          // the entries after k move up by one
+    void erase(std::size_t k);                                                   // the entries after k move up by one
     void push_back(const BeamTable& source, std::size_t from);
     // The entries of a and b (each in beam order, no beam in both) merged in beam order; in(a, k): whether a's
     // entry k goes in.
@@ -106,8 +106,8 @@ class Beams {
   // A broken beam still in the active table (between compactions) gets a zero response, uncomputed, unless
   // `broken_too`.
   template <BeamResponsePart P, class Use>
-  void each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last,
-                     Use&& use, bool broken_too = false) const;
+  void each_response(std::span<const double> q, const BeamTable& t, std::size_t first, std::size_t last, Use&& use,
+                     bool broken_too = false) const;
   // on_block(start, count, block) for blocks of the entries [first, last) of t, in order: the states at q of
   // entries start .. start + count − 1 gathered into the block's arrays, its constants pointing into t
   // (beams.cpp's ResponseBlock).

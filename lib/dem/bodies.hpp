@@ -17,7 +17,7 @@ struct Bodies {
   std::vector<double> diameter;      // equal-area diameter r = 2 sqrt(A/π), m (the paper's r)
   std::vector<double> bound_radius;  // largest vertex distance from the centroid, m
   double max_bound_radius = 0;
-  double length_scale = 0;           // the mesh spacing g, m (contact tolerances)
+  double length_scale = 0;  // the mesh spacing g, m (contact tolerances)
 };
 
 Bodies make_bodies(const mesh::CellMesh& mesh, const Material& material);

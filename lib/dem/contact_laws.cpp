@@ -9,9 +9,16 @@ const ContactLawTable& contact_law_table() {
       {"contact", [](const Material& m) { return contact_law(ElasticOverlap{m.grain_modulus * m.thickness}); },
        [](const Material&) { return std::array<double, 2>{}; }, true, false},
       {"damping", [](const Material& m) { return contact_law(NormalDamping{m.gamma_n}); },
-       [](const Material& m) { return std::array<double, 2>{m.gamma_n, 0.0}; }},
-      {"friction", [](const Material& m) { return contact_law(CoulombFriction{m.gamma_t, m.friction}); },
-       [](const Material& m) { return std::array<double, 2>{0.0, m.gamma_t}; }},
+       [](const Material& m) {
+         return std::array<double, 2>{m.gamma_n, 0.0};
+       }},
+      {"friction",
+       [](const Material& m) {
+         return contact_law(CoulombFriction{m.gamma_t, m.friction});
+       },
+       [](const Material& m) {
+         return std::array<double, 2>{0.0, m.gamma_t};
+       }},
   };
   return table;
 }

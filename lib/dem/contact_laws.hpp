@@ -97,7 +97,9 @@ std::unique_ptr<ContactLaw> contact_law(Law law) {
 struct ContactLawRow {
   std::string name;
   std::function<std::unique_ptr<ContactLaw>(const Material&)> make;
-  std::function<std::array<double, 2>(const Material&)> dashpot = [](const Material&) { return std::array<double, 2>{}; };
+  std::function<std::array<double, 2>(const Material&)> dashpot = [](const Material&) {
+    return std::array<double, 2>{};
+  };
   bool default_on = false;
   bool switched = true;  // false: on with the contacts (physics.contacts), no key of its own
 };

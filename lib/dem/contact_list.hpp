@@ -14,10 +14,10 @@ namespace frac::dem {
 struct ContactList {
   // Per contact, in entries [0, size()); the arrays may be longer (room kept from list to list).
   std::vector<std::int32_t> i, j;
-  std::vector<double> rx, ry;   // application point R, m
-  std::vector<double> nx, ny;   // unit normal from i to j
-  std::vector<double> area;     // overlap area, m^2
-  std::vector<double> inv_lc;   // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
+  std::vector<double> rx, ry;  // application point R, m
+  std::vector<double> nx, ny;  // unit normal from i to j
+  std::vector<double> area;    // overlap area, m^2
+  std::vector<double> inv_lc;  // 1/L_c = (1/r_i + 1/r_j)/2, m^-1
   // What the laws read (dem/contact_laws: contact_kinematics): the velocity of j relative to i at R along n
   // and t = ẑ × n (m/s), and the effective mass (kg).
   std::vector<double> vn, vt, m_eff;

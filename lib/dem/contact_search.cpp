@@ -11,10 +11,7 @@
 namespace frac::dem {
 
 ContactSearch::ContactSearch(const mesh::CellMesh& mesh, const Bodies& bodies)
-    : mesh_(&mesh),
-      bodies_(&bodies),
-      world_(mesh.vertex.size()),
-      list_(bodies) {
+    : mesh_(&mesh), bodies_(&bodies), world_(mesh.vertex.size()), list_(bodies) {
   inv_diameter_.resize(bodies.n);
   for (std::size_t k = 0; k < bodies.n; ++k) inv_diameter_[k] = 1.0 / bodies.diameter[k];
   // The reach of every edge of every cell (body frame: a rigid motion does not change it).
@@ -68,11 +65,10 @@ inline bool ContactSearch::test_pair(std::size_t p, const double* x, const doubl
     return false;
   }
   // (Each test starts from the vertex that lay deepest at the last one: mostly, three vertices tested.)
-  if (!pair.overlapping &&
-      (geometry::edge_separates(world_polygon(i), static_cast<std::size_t>(pair.edge_i), world_polygon(j), slack,
-                                pair.deepest_i) ||
-       geometry::edge_separates(world_polygon(j), static_cast<std::size_t>(pair.edge_j), world_polygon(i), slack,
-                                pair.deepest_j)))
+  if (!pair.overlapping && (geometry::edge_separates(world_polygon(i), static_cast<std::size_t>(pair.edge_i),
+                                                     world_polygon(j), slack, pair.deepest_i) ||
+                            geometry::edge_separates(world_polygon(j), static_cast<std::size_t>(pair.edge_j),
+                                                     world_polygon(i), slack, pair.deepest_j)))
     return true;
   test_pair_further(p, x, y, slack, fill);
   return true;
@@ -290,6 +286,5 @@ void ContactSearch::set_touch(ContactList& out, std::size_t t, std::size_t first
   for (std::size_t u = 0; u < nt; ++u)
     if (touch[u].first >= touch[u].last) touch[u] = {0, 0};
 }
-
 
 }  // namespace frac::dem

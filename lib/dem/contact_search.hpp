@@ -48,11 +48,11 @@ class ContactSearch {
  private:
   void reserve_threads(std::size_t threads, ContactList& out);
   // The phases' bodies: t of a team of nt.
-  void vertices(std::size_t t, std::size_t nt);     // world vertices and moves of thread t's cells
-  void test_pairs(std::size_t t, std::size_t nt);   // thread t's part of the pairs into its list
-  void count(std::size_t nt);                       // the blocks' offsets, the list's room, size and diagnostics
-  void fill(std::size_t t, std::size_t nt);         // thread t's contacts copied to its block of the list
-  std::span<const double> q_;                       // bound state and list
+  void vertices(std::size_t t, std::size_t nt);    // world vertices and moves of thread t's cells
+  void test_pairs(std::size_t t, std::size_t nt);  // thread t's part of the pairs into its list
+  void count(std::size_t nt);                      // the blocks' offsets, the list's room, size and diagnostics
+  void fill(std::size_t t, std::size_t nt);        // thread t's contacts copied to its block of the list
+  std::span<const double> q_;                      // bound state and list
   ContactList* out_ = nullptr;
   WorldPolygons world_polygons() const { return {world_.data(), mesh_->vertex_offset.data()}; }
   std::span<const Vec2> world_polygon(std::size_t k) const { return world_polygons()(k); }
@@ -73,19 +73,20 @@ class ContactSearch {
   bool test_pair(std::size_t p, const double* x, const double* y, double slack, Fill& fill);
   [[gnu::noinline]] void test_pair_further(std::size_t p, const double* x, const double* y, double slack, Fill& fill);
   TeamSlots<std::int64_t> candidates_;  // per thread: candidate pairs it tested
-  struct Block {  // one thread's block of the list: the contacts of its part of the pairs
+  struct Block {                        // one thread's block of the list: the contacts of its part of the pairs
     std::int64_t count = 0, enclosed = 0, multi_crossing = 0;  // overlapping pairs and their diagnostics
     std::int64_t offset = 0;                                   // its first entry in the list
   };
-  std::vector<Block> blocks_;            // per thread
-  std::vector<ContactList> staged_;      // per thread but the first: the contacts of its part of the pairs
+  std::vector<Block> blocks_;        // per thread
+  std::vector<ContactList> staged_;  // per thread but the first: the contacts of its part of the pairs
   // Thread t's part of the pairs, of a team of nt: whole chunks of kChunkPairs, split by the last evaluation's
   // contacts (each costs the pair tests of about kContactWeight pairs without one).
   static constexpr std::size_t kChunkPairs = 1024;
   static constexpr double kContactWeight = 16;
   Range balanced_part(std::size_t t, std::size_t nt) const;
-  std::array<std::vector<std::uint32_t>, 2> chunk_contacts_;  // contacts per chunk: the last evaluation's, and this one's
-  int parity_ = 0;                                            // chunk_contacts_[parity_]: this evaluation's
+  std::array<std::vector<std::uint32_t>, 2>
+      chunk_contacts_;  // contacts per chunk: the last evaluation's, and this one's
+  int parity_ = 0;      // chunk_contacts_[parity_]: this evaluation's
   // out.touch for thread t's block, [first, last), of a team of nt.
   void set_touch(ContactList& out, std::size_t t, std::size_t first, std::size_t last, std::size_t nt) const;
 };

@@ -89,8 +89,8 @@ LoadingSetup explosion_kick(const Loading& loading, const mesh::CellMesh& mesh, 
 // every cell whose centroid lies in the w × w square resting on the middle of the bottom edge (the same
 // projectile on a finer mesh). All fly into the block (+y) at one speed: impact_speed, or the speed that
 // gives them impact_energy.
-LoadingSetup impact_kick(const Loading& loading, const mesh::CellMesh& mesh, const Bodies& bodies,
-                         std::span<double> v0, double depth) {
+LoadingSetup impact_kick(const Loading& loading, const mesh::CellMesh& mesh, const Bodies& bodies, std::span<double> v0,
+                         double depth) {
   LoadingSetup setup;
   const std::size_t n = mesh.cells();
   const auto& b = mesh.bounds;
@@ -103,7 +103,8 @@ LoadingSetup impact_kick(const Loading& loading, const mesh::CellMesh& mesh, con
     if (src == n || std::abs(c.x() - xc) < std::abs(mesh.centroid[src].x() - xc)) src = k;
   }
   if (src == n)
-    throw InputError("loading.kind = impact: no cell within " + std::to_string(w > 0 ? w : depth) + " m of the bottom edge");
+    throw InputError("loading.kind = impact: no cell within " + std::to_string(w > 0 ? w : depth) +
+                     " m of the bottom edge");
   if (setup.kicked.empty()) setup.kicked.push_back(src);
   setup.source = src;
   double mass = 0;
@@ -148,8 +149,10 @@ LoadingSetup boundary_layers(const Loading& loading, const mesh::CellMesh& mesh,
   p.thickness = model.material().thickness;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2& c = mesh.centroid[k];
-    if (c.y() > b[3] - depth) p.top.push_back(k);
-    else if (c.y() < b[1] + depth) p.bottom.push_back(k);
+    if (c.y() > b[3] - depth)
+      p.top.push_back(k);
+    else if (c.y() < b[1] + depth)
+      p.bottom.push_back(k);
     if (c.x() > b[2] - depth) p.right.push_back(k);
     if (c.x() < b[0] + depth) p.left.push_back(k);
   }

@@ -16,7 +16,7 @@
 namespace frac::dem {
 
 struct LoadingProbe {
-  bool active = false;  // uniaxial or confined compression
+  bool active = false;                                // uniaxial or confined compression
   std::vector<std::size_t> top, bottom, left, right;  // cells of the boundary layers and side columns
   double width0 = 0, length0 = 0;  // m, initial W (mean x right − left) and L (mean y top − bottom)
   double thickness = 0;

@@ -10,16 +10,16 @@
 namespace frac::dem {
 
 struct Material {
-  double density = 5000.0;      // ρ, kg m^-3
-  double thickness = 0.01;      // h, m
-  double grain_modulus = 1e9;   // Y, Pa (overlap repulsion)
-  double beam_modulus = 5e8;    // E, Pa
-  double shear_ratio = 2.0;     // b/a = E/G (the paper: b = 2a, G = E/2)
-  double t_eps = 0.03;          // stretching threshold t_ε
+  double density = 5000.0;              // ρ, kg m^-3
+  double thickness = 0.01;              // h, m
+  double grain_modulus = 1e9;           // Y, Pa (overlap repulsion)
+  double beam_modulus = 5e8;            // E, Pa
+  double shear_ratio = 2.0;             // b/a = E/G (the paper: b = 2a, G = E/2)
+  double t_eps = 0.03;                  // stretching threshold t_ε
   double t_theta = 0.0698131700797732;  // bending threshold t_Θ, rad (scene key in degrees)
-  double friction = 0.0;        // Coulomb coefficient μ
-  double gamma_n = 0.0;         // normal damping rate γ_N, s^-1
-  double gamma_t = 0.0;         // tangential (viscous friction) rate γ_T, s^-1
+  double friction = 0.0;                // Coulomb coefficient μ
+  double gamma_n = 0.0;                 // normal damping rate γ_N, s^-1
+  double gamma_t = 0.0;                 // tangential (viscous friction) rate γ_T, s^-1
 };
 
 // The physics a scene names; a term that is off is not in the engine's term list.

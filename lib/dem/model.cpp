@@ -23,8 +23,7 @@ double LayerMotion::acceleration(double t) const {
   return t < ramp ? speed / ramp : 0;
 }
 
-Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics,
-             const ContactLawTable& laws)
+Model::Model(const mesh::CellMesh& mesh, const Material& material, const Physics& physics, const ContactLawTable& laws)
     : bodies_(make_bodies(mesh, material)), material_(material), physics_(physics) {
   // The beams' geometry is kept even when they are off (a run file records every mesh beam: intact flags
   // and strains); off, the Simulation marks them all broken and the term is not in the list.
@@ -70,7 +69,8 @@ void Model::bind(double t, std::span<const double> q, std::span<const double> v,
 void Model::make_phases() {
   const bool beams = physics_.beams, contacts = physics_.contacts;
   if (!beams)
-    phases_.add({"forces: zero", false,
+    phases_.add({"forces: zero",
+                 false,
                  [this](std::size_t t, std::size_t nt) {
                    double* force = force_.data();
                    coordinate_ranges(size(), coordinate_blocks(), t, nt, [&](std::size_t first, std::size_t last) {
@@ -81,16 +81,15 @@ void Model::make_phases() {
                  {}});
   if (contacts) phases_.add(search_.start_phases());
   if (beams)
-    phases_.add({"beams: forces", false,
-                 [this](std::size_t t, std::size_t nt) { beams_.beam_pass(bound_q_, t, nt); }, {}});
+    phases_.add(
+        {"beams: forces", false, [this](std::size_t t, std::size_t nt) { beams_.beam_pass(bound_q_, t, nt); }, {}});
   if (contacts) phases_.add(search_.finish_phases());
   if (beams)
-    phases_.add({"beams: gather", false,
-                 [this](std::size_t t, std::size_t nt) { beams_.gather(force_, false, t, nt); }, {}});
+    phases_.add(
+        {"beams: gather", false, [this](std::size_t t, std::size_t nt) { beams_.gather(force_, false, t, nt); }, {}});
   if (contacts) {
     phases_.add({"contact laws", false, [this](std::size_t t, std::size_t) { contact_laws_part(t); }, {}});
-    phases_.add({"contact forces", false,
-                 [this](std::size_t t, std::size_t nt) { contact_forces_part(t, nt); }, {}});
+    phases_.add({"contact forces", false, [this](std::size_t t, std::size_t nt) { contact_forces_part(t, nt); }, {}});
   }
   phases_.add({"accelerations", false, [this](std::size_t t, std::size_t nt) { accelerations_part(t, nt); }, {}});
   phases_.add({"forces: sums", true, [this](std::size_t, std::size_t nt) { sums(nt); }, {}});

@@ -11,14 +11,14 @@
 #include <string_view>
 #include <vector>
 
+#include "core/parallel.hpp"
+#include "core/state_registry.hpp"
 #include "dem/beams.hpp"
 #include "dem/bodies.hpp"
-#include "core/parallel.hpp"
 #include "dem/contact_laws.hpp"
 #include "dem/contact_list.hpp"
 #include "dem/contact_search.hpp"
 #include "dem/material.hpp"
-#include "core/state_registry.hpp"
 #include "dynamics/integrator.hpp"
 
 namespace frac::dem {

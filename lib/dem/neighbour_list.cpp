@@ -159,9 +159,14 @@ void NeighbourList::find_pairs(std::span<const double> q, WorldPolygons world, s
         return;
       }
       const Vec2 dij(dx, dy);
-      buf.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j),
+      buf.push_back({static_cast<std::int32_t>(i),
+                     static_cast<std::int32_t>(j),
                      static_cast<std::uint8_t>(geometry::facing_edge(world(i), dij)),
-                     static_cast<std::uint8_t>(geometry::facing_edge(world(j), -dij)), false, 0, 0, {}});
+                     static_cast<std::uint8_t>(geometry::facing_edge(world(j), -dij)),
+                     false,
+                     0,
+                     0,
+                     {}});
     });
   };
   if (gx > 0) {
@@ -212,7 +217,8 @@ void NeighbourList::visit_state(StateArchive& archive) {
   if (!archive.loading())
     for (std::size_t p = 0; p < pairs; ++p) {
       lines[p * (1 + kLabels)] = pairs_[p].lines.size;
-      std::copy(pairs_[p].lines.label.begin(), pairs_[p].lines.label.end(), lines.begin() + static_cast<std::ptrdiff_t>(p * (1 + kLabels) + 1));
+      std::copy(pairs_[p].lines.label.begin(), pairs_[p].lines.label.end(),
+                lines.begin() + static_cast<std::ptrdiff_t>(p * (1 + kLabels) + 1));
     }
   archive.array("lines", lines, pairs * (1 + kLabels));
   if (!archive.loading()) return;
@@ -221,7 +227,8 @@ void NeighbourList::visit_state(StateArchive& archive) {
     if (pair.i < 0 || pair.j <= pair.i || static_cast<std::size_t>(pair.j) >= n)
       archive.refuse("i", "pair " + std::to_string(p) + " is not two cells i < j of the mesh");
     pair.lines.size = lines[p * (1 + kLabels)];
-    if (pair.lines.size > kLabels) archive.refuse("lines", "pair " + std::to_string(p) + ": more lines than a cache holds");
+    if (pair.lines.size > kLabels)
+      archive.refuse("lines", "pair " + std::to_string(p) + ": more lines than a cache holds");
     std::copy_n(lines.begin() + static_cast<std::ptrdiff_t>(p * (1 + kLabels) + 1), kLabels, pair.lines.label.begin());
   }
 }

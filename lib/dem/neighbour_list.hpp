@@ -69,10 +69,10 @@ class NeighbourList {
  private:
   const Bodies* bodies_ = nullptr;
   bool rebuilding_ = false;
-  double skin_ = 0;                       // m
-  std::vector<double> ref_;               // q at the last build
-  std::vector<NeighbourPair> pairs_;      // in order of i, then of the grid scan
-  std::vector<NeighbourPair> previous_;   // the list before the rebuild under way (empty between rebuilds)
+  double skin_ = 0;                           // m
+  std::vector<double> ref_;                   // q at the last build
+  std::vector<NeighbourPair> pairs_;          // in order of i, then of the grid scan
+  std::vector<NeighbourPair> previous_;       // the list before the rebuild under way (empty between rebuilds)
   std::vector<std::int32_t> previous_first_;  // its first pair of each cell i
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's buffers of the threads after the first
   // Counting sort of the cells into the grid, and their centres and bounding radii in grid order (sorted).
@@ -83,7 +83,7 @@ class NeighbourList {
   };
   std::vector<GridBody> grid_body_;
   std::size_t grid_x_ = 0, grid_y_ = 0;  // grid cells along x and y (0: no finite grid)
-  struct Moved {  // the two largest distances that cells' centroids moved since the build, m
+  struct Moved {                         // the two largest distances that cells' centroids moved since the build, m
     double largest = 0, second = 0;
     void add(double d) {
       if (d > largest) {

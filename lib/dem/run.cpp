@@ -19,8 +19,7 @@ std::string blame_non_finite(const Model& model, const dynamics::Integrator& in,
   msg << "non-finite value at step " << step << " (t = " << in.t() << " s)";
   if (!model.non_finite_term().empty()) {
     const std::size_t k = model.non_finite_index();
-    msg << ": the " << model.non_finite_term() << " force on cell " << k % n << " (" << what[k / n]
-        << ")";
+    msg << ": the " << model.non_finite_term() << " force on cell " << k % n << " (" << what[k / n] << ")";
   } else {
     const auto q = in.q();
     const auto v = in.v();
@@ -44,8 +43,16 @@ bool is_paper_law(const std::string& name) {
 
 DemRun::DemRun(Model& model, dynamics::Integrator& integrator, const mesh::CellMesh& mesh, const DemScene& scene,
                const LoadingSetup& setup, std::vector<double> q0, std::vector<double> v0, double dt, double start_tau)
-    : model_(model), integrator_(integrator), mesh_(mesh), scene_(scene), setup_(setup), q0_(std::move(q0)),
-      v0_(std::move(v0)), dt_(dt), start_tau_(start_tau), state_(model.bodies().n) {
+    : model_(model),
+      integrator_(integrator),
+      mesh_(mesh),
+      scene_(scene),
+      setup_(setup),
+      q0_(std::move(q0)),
+      v0_(std::move(v0)),
+      dt_(dt),
+      start_tau_(start_tau),
+      state_(model.bodies().n) {
   ledger_.law_work.assign(model_.contact_laws().size(), 0.0);
   previous_power_.assign(model_.contact_laws().size(), 0.0);
   next_frame_ = scene_.output.frame_interval;
@@ -197,9 +204,7 @@ void DemRun::make_frames() {
                                 model_.beams().size());
 }
 
-run::RunBodies DemRun::bodies() const {
-  return {&mesh_, nullptr, model_.bodies().mass, model_.bodies().inertia};
-}
+run::RunBodies DemRun::bodies() const { return {&mesh_, nullptr, model_.bodies().mass, model_.bodies().inertia}; }
 
 std::string DemRun::progress_line(std::int64_t step, std::int64_t first_step, double first_t, double elapsed) const {
   std::ostringstream s;

@@ -25,15 +25,15 @@ namespace frac::dem {
 
 struct RunSummary {
   std::int64_t steps = 0;
-  double time = 0;            // s
-  double dt = 0;              // s
-  std::int64_t broken = 0;    // beams broken during the run
-  std::string stop_reason;    // "t_max", "max_steps", "no breaking for N steps"
-  double energy_error = 0;    // max |E_balance − E_balance(0)| over the run, J
-  double energy_scale = 0;    // J: the larger of the initial energy and the boundary work
+  double time = 0;          // s
+  double dt = 0;            // s
+  std::int64_t broken = 0;  // beams broken during the run
+  std::string stop_reason;  // "t_max", "max_steps", "no breaking for N steps"
+  double energy_error = 0;  // max |E_balance − E_balance(0)| over the run, J
+  double energy_scale = 0;  // J: the larger of the initial energy and the boundary work
   double wall_seconds = 0;
-  int start_evaluations = 0;  // force evaluations of an exact gear5 start (0 for the usual start)
-  int checkpoints = 0;          // written by this process
+  int start_evaluations = 0;      // force evaluations of an exact gear5 start (0 for the usual start)
+  int checkpoints = 0;            // written by this process
   double checkpoint_seconds = 0;  // wall time spent writing them
   std::vector<PhaseTime> phases;  // the time of each phase of the steps (core/phases)
 };
@@ -72,8 +72,7 @@ class DemRun final : public run::Engine {
   std::vector<std::pair<std::string, std::int64_t>> run_attributes() const override {
     return {{"start_evaluations", start_evaluations_}};
   }
-  std::string progress_line(std::int64_t step, std::int64_t first_step, double first_t,
-                            double elapsed) const override;
+  std::string progress_line(std::int64_t step, std::int64_t first_step, double first_t, double elapsed) const override;
 
   // The run's summary, from the driver's outcome.
   RunSummary summary(const run::Outcome& outcome) const;
@@ -101,7 +100,7 @@ class DemRun final : public run::Engine {
   double next_frame_ = 0;
   std::int64_t last_break_step_ = -1;
   std::size_t broken_before_ = 0;  // broken_ before the step under way
-  struct Measured {  // what an observation measured, for the table's rows
+  struct Measured {                // what an observation measured, for the table's rows
     std::array<double, 2> kinetic{};
     double beam_energy = 0, balance = 0;
   } measured_;

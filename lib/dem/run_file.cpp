@@ -69,8 +69,8 @@ std::string summary_line(const RunSummary& s, const Simulation& sim) {
   std::ostringstream line;
   line.precision(4);
   line << s.steps << " steps of " << s.dt << " s to t = " << s.time << " s (" << s.stop_reason << "), " << s.broken
-       << " of " << sim.model.beams().size() << " beams broken, " << energy_balance_text(s) << ", "
-       << s.wall_seconds << " s wall";
+       << " of " << sim.model.beams().size() << " beams broken, " << energy_balance_text(s) << ", " << s.wall_seconds
+       << " s wall";
   if (s.checkpoints > 0) line << " (" << s.checkpoints << " checkpoints, " << s.checkpoint_seconds << " s)";
   return line.str();
 }

@@ -22,9 +22,9 @@ struct Loading {
   double ramp = 1e-3;            // s
   double layer_depth = 0;        // m; cells whose centroid lies within it of the edge (0: one spacing g)
   // explosion and pulse: kinetic energy E0 given to the neighbours of the central cell.
-  double energy = 500.0;         // J (for the scene's thickness)
+  double energy = 500.0;  // J (for the scene's thickness)
   // impact: speed of the projectile cell at the middle of the bottom layer, into the block (+y).
-  double impact_speed = 400.0;   // m/s
+  double impact_speed = 400.0;  // m/s
   // impact: if > 0, the projectile's kinetic energy instead (J): its speed is √(2E/m) for the mass of
   // the cell the mesh puts there (the paper's 400 m/s came with ≈ 457 J, a 5.7 g cell).
   double impact_energy = 0.0;
@@ -38,20 +38,20 @@ struct IntegratorSettings {
   // gear5's r3..r5 at t = 0: zero (the usual start, O(dt²) globally) or exact (from the equations of
   // motion, dynamics::taylor_derivatives; O(dt⁵) on smooth problems). Verlet ignores it.
   dynamics::StartKind start = dynamics::StartKind::zero;
-  double dt = 0;          // s; 0 = auto
-  double safety = 0.5;    // auto dt = safety × bound
+  double dt = 0;        // s; 0 = auto
+  double safety = 0.5;  // auto dt = safety × bound
   bool allow_unstable = false;
 };
 
 struct StopRule {
-  double t_max = 0.01;                     // s
+  double t_max = 0.01;  // s
   long long max_steps = 100000000;
   long long steps_without_breaking = 300;  // after the first break; 0 = off
 };
 
 struct OutputPlan {
-  double frame_interval = 1e-4;  // s between trajectory frames (the final state is always a frame)
-  long long observe_every = 10;  // steps between observable samples
+  double frame_interval = 1e-4;     // s between trajectory frames (the final state is always a frame)
+  long long observe_every = 10;     // steps between observable samples
   std::vector<std::string> frames;  // the datasets of every frame (dem/frames' rows), position among them
 };
 

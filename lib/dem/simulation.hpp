@@ -35,9 +35,7 @@ struct Simulation {
     return e.summary(run::drive(e, progress));
   }
   // Time scale of an exact start: 0.1 of the fastest motion (ω_max, or the damping rate γ_max).
-  double start_tau() const {
-    return 0.1 / std::max(time_step.omega_max, time_step.gamma_max);
-  }
+  double start_tau() const { return 0.1 / std::max(time_step.omega_max, time_step.gamma_max); }
 };
 
 // The initial kick of an explosion, pulse or impact (validation B1-B3 of the physics note): how many

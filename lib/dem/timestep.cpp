@@ -135,8 +135,8 @@ double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, 
     std::fill(y.begin(), y.end(), 0.0);
     for (const Pair& p : pairs) {
       const double dx = u[p.j] - u[p.i], dy = u[n + p.j] - u[n + p.i];
-      const double da = dx * p.ex + dy * p.ey;     // axial stretch
-      const double dt = -dx * p.ey + dy * p.ex;    // transverse offset along t = ẑ × e
+      const double da = dx * p.ex + dy * p.ey;   // axial stretch
+      const double dt = -dx * p.ey + dy * p.ex;  // transverse offset along t = ẑ × e
       const double ti = u[2 * n + p.i] - dt / p.l0, tj = u[2 * n + p.j] - dt / p.l0;
       const double l02 = p.l0 * p.l0;
       const double mi = -(p.k.beta * l02 / 2) * tj + p.k.delta * l02 * (tj - ti);

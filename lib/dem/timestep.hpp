@@ -22,10 +22,10 @@ double max_eigenfrequency(const mesh::CellMesh& mesh, const Material& material, 
 double max_damping_rate(const mesh::CellMesh& mesh, const Material& material, const Physics& physics);
 
 struct TimeStep {
-  double dt;          // s
-  double bound;       // s, min(limit/ω_max, damping_limit/γ_max)
-  double omega_max;   // rad/s
-  double gamma_max;   // s^-1
+  double dt;         // s
+  double bound;      // s, min(limit/ω_max, damping_limit/γ_max)
+  double omega_max;  // rad/s
+  double gamma_max;  // s^-1
 };
 
 // dt_requested <= 0 means auto: safety × bound. A requested step above the bound is refused

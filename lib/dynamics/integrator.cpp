@@ -20,8 +20,7 @@ namespace frac::dynamics {
 IntegratorKind parse_integrator_kind(std::string_view name, std::string_view option) {
   if (name == "gear5") return IntegratorKind::gear5;
   if (name == "verlet") return IntegratorKind::verlet;
-  throw UsageError(std::string(option) + ": unknown integrator '" + std::string(name) +
-                   "' (choose gear5 or verlet)");
+  throw UsageError(std::string(option) + ": unknown integrator '" + std::string(name) + "' (choose gear5 or verlet)");
 }
 
 double read_time_step(Scene& scene, double t_max) {
@@ -145,8 +144,10 @@ void require_resolved(const std::vector<double>& c, std::size_t n) {
       if (m >= kNodes - 2) top = std::max(top, x);
     }
   if (top > 1e-8 * all)
-    throw RuntimeError("exact start: the time scale tau is too long for the fastest motion (the highest terms "
-                       "of the collocation polynomial are " + std::to_string(top / all) + " of its largest)");
+    throw RuntimeError(
+        "exact start: the time scale tau is too long for the fastest motion (the highest terms "
+        "of the collocation polynomial are " +
+        std::to_string(top / all) + " of its largest)");
 }
 
 // q0, v0 and d^(m+2)q/dt^(m+2) at s = 0, m!·c_m/tau^m, for m < 4.
@@ -198,8 +199,8 @@ TaylorStart taylor_derivatives(System& system, double t0, std::span<const double
     if (!std::isfinite(out.residual) || (out.iterations > 4 && out.residual > previous && out.residual > 1e-6) ||
         out.iterations > 60)
       throw RuntimeError("exact start: the Picard iteration for the initial derivatives does not converge (change " +
-                         std::to_string(out.residual) + " of the excursion after " +
-                         std::to_string(out.iterations) + " passes); the time scale tau is too long");
+                         std::to_string(out.residual) + " of the excursion after " + std::to_string(out.iterations) +
+                         " passes); the time scale tau is too long");
     // Converged: nothing moves beyond 1e-15 of the excursion, or, once small, two passes in a row stopped
     // gaining (the rounding floor).
     if (out.residual <= 1e-15) break;
@@ -247,8 +248,10 @@ void System::bind(double t, std::span<const double> q, std::span<const double> v
 
 Phases System::force_phases() {
   Phases p;
-  p.add({"accelerations", true,
-         [this](std::size_t, std::size_t) { accelerations(bound_t_, bound_q_, bound_v_, bound_a_); }, {}});
+  p.add({"accelerations",
+         true,
+         [this](std::size_t, std::size_t) { accelerations(bound_t_, bound_q_, bound_v_, bound_a_); },
+         {}});
   return p;
 }
 
@@ -262,7 +265,8 @@ void Integrator::step(System& system) {
 }
 
 Phase Integrator::clock_phase(const TeamSlots<int>& bad) {
-  return {"step: clock", true,
+  return {"step: clock",
+          true,
           [this, &bad](std::size_t, std::size_t nt) {
             int any = 0;
             for (std::size_t t = 0; t < nt; ++t) any |= bad[t];
@@ -337,8 +341,8 @@ void Gear5::apply_prescribed(const System& system, double t) {
 // value is read once into a local, so no store forces a reload and the loops vectorise.
 // Predictor: Pascal's triangle, each line reading only not-yet-updated higher orders; v = r1/dt.
 void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
-                   double* __restrict r2, double* __restrict r3, double* __restrict r4,
-                   const double* __restrict r5, double* __restrict v, double inv_dt) {
+                   double* __restrict r2, double* __restrict r3, double* __restrict r4, const double* __restrict r5,
+                   double* __restrict v, double inv_dt) {
 #pragma omp simd
   for (std::size_t i = first; i < last; ++i) {
     const double d1 = r1[i], d2 = r2[i], d3 = r3[i], d4 = r4[i], d5 = r5[i];
@@ -384,7 +388,8 @@ Phases Gear5::step_phases(System& system, const Phases& after) {
   // Each loop on the threads' parts of the coordinates (PartLayout: r_[1..5] shifted), split as the system splits
   // its cells.
   Phases p;
-  p.add({"predict", false,
+  p.add({"predict",
+         false,
          [this](std::size_t, std::size_t) {
            double *r1 = r_[1].data(), *r2 = r_[2].data(), *r3 = r_[3].data(), *r4 = r_[4].data();
            const double* r5 = r_[5].data();
@@ -397,7 +402,8 @@ Phases Gear5::step_phases(System& system, const Phases& after) {
   p.add({"prescribe", true, [this, &system](std::size_t, std::size_t) { apply_prescribed(system, t_ + dt_); },
          prescribed});
   p.add(system.force_phases());
-  p.add({"correct", false,
+  p.add({"correct",
+         false,
          [this](std::size_t t, std::size_t) {
            double *r1 = r_[1].data(), *r2 = r_[2].data(), *r3 = r_[3].data(), *r4 = r_[4].data(), *r5 = r_[5].data();
            int bad = 0;
@@ -448,7 +454,8 @@ void VelocityVerlet::begin_step(System& system) {
 Phases VelocityVerlet::step_phases(System& system, const Phases& after) {
   const std::size_t blocks = system.coordinate_blocks();
   Phases p;
-  p.add({"kick and drift", false,
+  p.add({"kick and drift",
+         false,
          [this, blocks](std::size_t t, std::size_t nt) {
            const double h = 0.5 * dt_, dt = dt_;
            double *q = q_.data(), *v = v_.data(), *v_est = v_est_.data();
@@ -463,10 +470,13 @@ Phases VelocityVerlet::step_phases(System& system, const Phases& after) {
            });
          },
          {}});
-  p.add({"prescribe", true, [this, &system](std::size_t, std::size_t) { system.prescribe(t_ + dt_, q_, v_est_, a_); },
+  p.add({"prescribe",
+         true,
+         [this, &system](std::size_t, std::size_t) { system.prescribe(t_ + dt_, q_, v_est_, a_); },
          {}});
   p.add(system.force_phases());
-  p.add({"kick", false,
+  p.add({"kick",
+         false,
          [this, blocks](std::size_t t, std::size_t nt) {
            const double h = 0.5 * dt_;
            const double *q = q_.data(), *a = a_.data();

@@ -28,8 +28,7 @@ class System {
  public:
   virtual ~System() = default;
   // Accelerations at (t, q, v) into a (all of size n). Called once per step; must not allocate.
-  virtual void accelerations(double t, std::span<const double> q, std::span<const double> v,
-                             std::span<double> a) = 0;
+  virtual void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) = 0;
   // The coordinates this system prescribes, and their values at time t (written into q, v, a at those
   // indices only). The default prescribes nothing.
   virtual std::span<const std::size_t> prescribed() const { return {}; }
@@ -90,8 +89,7 @@ class Integrator {
   // Sets q(t0) = q0, v(t0) = v0 and evaluates the initial accelerations.
   // For gear5 the higher derivatives start at zero (the usual start; limits global accuracy to O(dt²));
   // Gear5::start_exact, or start() below with StartKind::exact, gives them exactly.
-  virtual void start(System& system, double t0, double dt, std::span<const double> q0,
-                     std::span<const double> v0) = 0;
+  virtual void start(System& system, double t0, double dt, std::span<const double> q0, std::span<const double> v0) = 0;
   // Advances by one step of dt: the phases of step_phases(system) on a team when worth it.
   void step(System& system);
   // One step as phases (core/phases): the integrator's (predict, the prescribed coordinates, correct, its clock)
@@ -173,16 +171,15 @@ int start(Integrator& integrator, System& system, double t0, double dt, std::spa
 // accelerations a at the predicted state (returns 1 if a corrected q or v is not finite). Element by element:
 // any split of [0, n) gives the same bits.
 void gear5_predict(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
-                   double* __restrict r2, double* __restrict r3, double* __restrict r4,
-                   const double* __restrict r5, double* __restrict v, double inv_dt);
+                   double* __restrict r2, double* __restrict r3, double* __restrict r4, const double* __restrict r5,
+                   double* __restrict v, double inv_dt);
 int gear5_correct(std::size_t first, std::size_t last, double* __restrict r0, double* __restrict r1,
                   double* __restrict r2, double* __restrict r3, double* __restrict r4, double* __restrict r5,
                   double* __restrict v, const double* __restrict a, double half_dt2, double inv_dt);
 
 class Gear5 final : public Integrator {
  public:
-  void start(System& system, double t0, double dt, std::span<const double> q0,
-             std::span<const double> v0) override;
+  void start(System& system, double t0, double dt, std::span<const double> q0, std::span<const double> v0) override;
   // Exact start for convergence tests: derivs[k][i] = d^k q_i/dt^k at t0, k = 0..5 (k = 2 is
   // recomputed from the system).
   void start_exact(System& system, double t0, double dt, const std::vector<std::vector<double>>& derivs);
@@ -208,8 +205,7 @@ class Gear5 final : public Integrator {
 
 class VelocityVerlet final : public Integrator {
  public:
-  void start(System& system, double t0, double dt, std::span<const double> q0,
-             std::span<const double> v0) override;
+  void start(System& system, double t0, double dt, std::span<const double> q0, std::span<const double> v0) override;
   Phases step_phases(System& system, const Phases& after = {}) override;
   void begin_step(System& system) override;
   IntegratorKind kind() const override { return IntegratorKind::verlet; }

@@ -8,7 +8,8 @@
 
 namespace frac::dynamics {
 
-RunawayGuard::RunawayGuard(std::span<const double> q0, std::size_t n, std::string body) : n_(n), body_(std::move(body)) {
+RunawayGuard::RunawayGuard(std::span<const double> q0, std::size_t n, std::string body)
+    : n_(n), body_(std::move(body)) {
   if (n == 0) return;
   std::array<double, 2> lo{q0[0], q0[n]}, hi = lo;
   for (std::size_t k = 0; k < n; ++k) {

@@ -13,9 +13,9 @@
 
 namespace frac::geometry {
 namespace {
-using detail::OverlapFrame;
 using detail::kMaxRegularVertices;
 using detail::line_normal;
+using detail::OverlapFrame;
 using detail::regular_vertices;
 
 // The clipper's working polygon: vertex k and the label of its edge k -> k+1, which names the
@@ -163,12 +163,11 @@ Vec2 centre_normal(const Vec2& dc) {
 // The overlap by clipping (convex_overlap's method), then from its lines when it is regular (the lines go to
 // `cache`). Kept out of line: its buffers make a large stack frame that the cached path does not need.
 [[gnu::noinline]] ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj,
-                                                  std::size_t first_clip_edge, const OverlapHint* hint,
-                                                  OverlapFrame& f, OverlapLines* cache);
+                                                  std::size_t first_clip_edge, const OverlapHint* hint, OverlapFrame& f,
+                                                  OverlapLines* cache);
 
 ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
-                             double g, std::size_t first_clip_edge, const OverlapHint* hint,
-                             OverlapPolygon* overlap) {
+                             double g, std::size_t first_clip_edge, const OverlapHint* hint, OverlapPolygon* overlap) {
   const std::size_t n = pi.size(), m = pj.size();
   if (n > kMaxContactPolygonVertices || m > kMaxContactPolygonVertices) {
     throw InputError("convex_overlap: polygon with " + std::to_string(n > m ? n : m) + " vertices (at most " +
@@ -292,8 +291,8 @@ ContactGeometry overlap_impl(std::span<const Vec2> pi, std::span<const Vec2> pj,
   const double tol2 = eps_len * eps_len;
   EdgeTable edges_i, edges_j;
   NearEdges near_edges_i, near_edges_j;
-  const bool near_i = hint && hint->edge_i < n && hint->reach_i > 0.0 &&
-                      within_reach(P.v.data(), K, si, hint->edge_i, hint->reach_i);
+  const bool near_i =
+      hint && hint->edge_i < n && hint->reach_i > 0.0 && within_reach(P.v.data(), K, si, hint->edge_i, hint->reach_i);
   auto shared = [&](std::size_t e) {
     if (shared_state[e] < 0) {
       const Vec2& u = P.v[e];
@@ -424,13 +423,13 @@ ContactGeometry clipped_overlap(std::span<const Vec2> pi, std::span<const Vec2> 
 
 }  // namespace
 
-ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale, std::size_t first_clip_edge) {
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                               double length_scale, std::size_t first_clip_edge) {
   return overlap_impl(pi, pj, ci, cj, length_scale, first_clip_edge, nullptr, nullptr);
 }
 
-ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale, const OverlapHint& hint) {
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                               double length_scale, const OverlapHint& hint) {
   return overlap_impl(pi, pj, ci, cj, length_scale, hint.edge_j, &hint, nullptr);
 }
 
@@ -451,8 +450,8 @@ double edge_reach(std::span<const Vec2> p, std::size_t edge) {
   return reach > 0.0 ? (1.0 - 1e-3) * reach : 0.0;
 }
 
-ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale, OverlapPolygon& overlap) {
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                               double length_scale, OverlapPolygon& overlap) {
   return overlap_impl(pi, pj, ci, cj, length_scale, 0, nullptr, &overlap);
 }
 

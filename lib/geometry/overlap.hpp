@@ -50,8 +50,8 @@ struct ContactGeometry {
   // the other, identical polygons); the force acts at the overlap centroid, along c_j - c_i.
   enum class Kind { none, line, enclosed };
   Kind kind = Kind::none;
-  double area = 0.0;           // A_ov (m^2); 0 when kind == none
-  Vec2 p1 = Vec2::Zero();      // contact line P1P2 (m); p1 = p2 = point when enclosed
+  double area = 0.0;       // A_ov (m^2); 0 when kind == none
+  Vec2 p1 = Vec2::Zero();  // contact line P1P2 (m); p1 = p2 = point when enclosed
   Vec2 p2 = Vec2::Zero();
   Vec2 point = Vec2::Zero();   // application point R (m)
   Vec2 normal = Vec2::Zero();  // unit normal from i toward j, n·(c_j - c_i) >= 0; zero when none
@@ -102,8 +102,8 @@ struct ContactGeometry {
 // Throws InputError if a polygon has more than kMaxContactPolygonVertices vertices or g is not > 0.
 // `first_clip_edge`: the edge of P_j to clip by first (a hint for speed: the one facing P_i; the
 // result is the same up to round-off whatever the hint).
-ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale, std::size_t first_clip_edge = 0);
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                               double length_scale, std::size_t first_clip_edge = 0);
 
 // The lines that bound a pair's overlap polygon, in order around it, as the last evaluation of the pair found
 // them (edge labels: 0..n-1 the edges of P_i, n + b edge b of P_j; size 0: none known). A caller that keeps
@@ -126,8 +126,8 @@ struct OverlapHint {
   double reach_i = 0.0, reach_j = 0.0;  // m
   OverlapLines* lines = nullptr;        // the pair's cache, read and updated; none: always clip
 };
-ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale, const OverlapHint& hint);
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                               double length_scale, const OverlapHint& hint);
 
 // The reach of edge `edge` of the convex polygon p: a radius about the edge's midpoint within which every
 // point is inside the half-plane of every edge of p other than this edge and its two neighbours, by at
@@ -136,7 +136,7 @@ ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> p
 double edge_reach(std::span<const Vec2> p, std::size_t edge);
 
 // The same, also returning the overlap polygon (empty when it has fewer than 3 vertices).
-ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci,
-                               const Vec2& cj, double length_scale, OverlapPolygon& overlap);
+ContactGeometry convex_overlap(std::span<const Vec2> pi, std::span<const Vec2> pj, const Vec2& ci, const Vec2& cj,
+                               double length_scale, OverlapPolygon& overlap);
 
 }  // namespace frac::geometry

@@ -18,7 +18,7 @@ std::size_t facing_edge(std::span<const Vec2> p, const Vec2& d) {
   }
   const std::size_t prev = s == 0 ? n - 1 : s - 1;
   const Vec2 e_out = p[s + 1 == n ? 0 : s + 1] - p[s];  // edge s -> s+1
-  const Vec2 e_in = p[s] - p[prev];                      // edge s-1 -> s
+  const Vec2 e_in = p[s] - p[prev];                     // edge s-1 -> s
   const double l_out = e_out.norm(), l_in = e_in.norm();
   // Outward normal of edge e (counter-clockwise polygon): (e_y, −e_x)/|e|.
   const double f_out = l_out > 0 ? (e_out.y() * d.x() - e_out.x() * d.y()) / l_out : -1e300;

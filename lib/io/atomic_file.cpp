@@ -59,7 +59,8 @@ void remove_abandoned_in(const std::filesystem::path& dir, const std::string& na
     const std::string path = (dir / e->d_name).string();
     const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
     if (fd < 0) continue;
-    struct stat opened {}, named {};
+    struct stat opened {
+    }, named{};
     // Unlocked and still the file of that name: abandoned.
     if (flock(fd, LOCK_EX | LOCK_NB) == 0 && fstat(fd, &opened) == 0 && lstat(path.c_str(), &named) == 0 &&
         opened.st_ino == named.st_ino && opened.st_dev == named.st_dev && S_ISREG(named.st_mode))
@@ -103,7 +104,8 @@ AtomicFile::AtomicFile(std::string target) : target_(std::move(target)) {
   buf.push_back('\0');
   fd_ = mkostemp(buf.data(), O_CLOEXEC);
   if (fd_ < 0)
-    throw RuntimeError(target_ + ": cannot create a file in '" + dir.string() + "' (" + write_failure(target_, errno) + ")");
+    throw RuntimeError(target_ + ": cannot create a file in '" + dir.string() + "' (" + write_failure(target_, errno) +
+                       ")");
   temp_ = buf.data();
   register_temp(temp_);
   flock(fd_, LOCK_EX);  // ours: not abandoned (the lock goes with the process)

@@ -73,7 +73,8 @@ StateReader::StateReader(const Group& group) : where_(group.where()) {
   EntryChecksum c;
   for (const std::string& line : group.read_strings(kEntries)) {
     const std::size_t space = line.find(' ');
-    const std::string type_name = line.substr(0, space), name = space == std::string::npos ? "" : line.substr(space + 1);
+    const std::string type_name = line.substr(0, space),
+                      name = space == std::string::npos ? "" : line.substr(space + 1);
     int type = -1;
     for (int t = 0; t < 3; ++t)
       if (type_name == kTypeName[t]) type = t;
@@ -84,9 +85,12 @@ StateReader::StateReader(const Group& group) : where_(group.where()) {
       if (!values.empty()) std::memcpy(e.bytes.data(), values.data(), e.bytes.size());
       c.add_entry(name, type, values.data(), values.size(), kTypeBytes[type]);
     };
-    if (type == 0) take(group.read<double>(name, nullptr, 1));
-    else if (type == 1) take(group.read<std::int64_t>(name, nullptr, 1));
-    else take(group.read<std::uint8_t>(name, nullptr, 1));
+    if (type == 0)
+      take(group.read<double>(name, nullptr, 1));
+    else if (type == 1)
+      take(group.read<std::int64_t>(name, nullptr, 1));
+    else
+      take(group.read<std::uint8_t>(name, nullptr, 1));
     entries_[name] = std::move(e);
   }
   if (static_cast<std::int64_t>(c.h) != group.attr_int("checksum"))
@@ -127,15 +131,20 @@ std::string run_key(const ToolRun& run) {
 
 Checkpoints::Checkpoints(const CheckpointOptions& options, std::string path, const ToolRun& run, RunWriter* writer,
                          std::string last_path, std::int64_t last_step)
-    : options_(options), path_(std::move(path)), run_(run), key_(run_key(run)), writer_(writer),
-      last_time_(std::chrono::steady_clock::now()), last_path_(std::move(last_path)), last_step_(last_step) {}
+    : options_(options),
+      path_(std::move(path)),
+      run_(run),
+      key_(run_key(run)),
+      writer_(writer),
+      last_time_(std::chrono::steady_clock::now()),
+      last_path_(std::move(last_path)),
+      last_step_(last_step) {}
 
 std::string Checkpoints::stopped_note(std::int64_t step) const {
   std::string note = "the run stopped" + (step >= 0 ? " after step " + std::to_string(step) : std::string());
   if (!enabled() && last_path_.empty())
     return note + "; it wrote no checkpoints (its output is not a file: --checkpoint FILE gives it some)";
-  if (last_path_.empty())
-    return note + "; no checkpoint of it was written before: run again, it starts afresh";
+  if (last_path_.empty()) return note + "; no checkpoint of it was written before: run again, it starts afresh";
   return note + "; its last checkpoint, " + last_path_ + " (step " + std::to_string(last_step_) +
          "), is intact: the same command line continues from it";
 }
@@ -182,8 +191,11 @@ void Checkpoints::stop_if_signalled(std::int64_t step, double time, const std::f
   const int sig = stop_signal();
   if (sig == 0) return;
   std::ostringstream msg;
-  msg << "stopped by " << (sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP") << " after step " << step
-      << " (t = " << time << " s)";
+  msg << "stopped by "
+      << (sig == SIGTERM  ? "SIGTERM"
+          : sig == SIGINT ? "SIGINT"
+                          : "SIGHUP")
+      << " after step " << step << " (t = " << time << " s)";
   if (enabled()) {
     try {
       write(step, time, visit);
@@ -257,12 +269,14 @@ std::string checked_checkpoint_path(const CheckpointOptions& options, const std:
 
 RunCheckpoints::RunCheckpoints(const CheckpointOptions& options, const std::string& output, ToolRun& run,
                                const std::function<void(const std::string&)>& note)
-    : options_(options), path_(checked_checkpoint_path(options, output)), run_(run), note_(note),
+    : options_(options),
+      path_(checked_checkpoint_path(options, output)),
+      run_(run),
+      note_(note),
       resume_(Resume::find(options, path_, run, note)) {}
 
 Continuation RunCheckpoints::start(RunWriter& writer) {
-  checkpoints_.emplace(options_, path_, run_, &writer, resume_ ? resume_->path() : "",
-                       resume_ ? resume_->step() : -1);
+  checkpoints_.emplace(options_, path_, run_, &writer, resume_ ? resume_->path() : "", resume_ ? resume_->step() : -1);
   Continuation c{&*checkpoints_, nullptr};
   if (resume_) {
     note_("continuing from " + resume_->path() + " at step " + std::to_string(resume_->step()));

@@ -21,8 +21,8 @@ FragmentLabels read_fragment_labels(const Group& root) {
                      ") does not match the length of mass (" + std::to_string(nf) + ")");
   l.cell_count = g.read<std::int64_t>("cell_count", nullptr, 1);
   if (l.cell_count.size() != nf)
-    throw InputError(g.where("cell_count") + ": has " + std::to_string(l.cell_count.size()) +
-                     " values, expected " + std::to_string(nf) + " (one per fragment)");
+    throw InputError(g.where("cell_count") + ": has " + std::to_string(l.cell_count.size()) + " values, expected " +
+                     std::to_string(nf) + " (one per fragment)");
   std::vector<std::int64_t> counted(nf, 0);
   for (std::size_t i = 0; i < l.cell_fragment.size(); ++i) {
     const auto id = l.cell_fragment[i];

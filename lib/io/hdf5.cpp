@@ -52,14 +52,30 @@ void Hid::reset() {
   }
   if (H5Iis_valid(id_) > 0) {
     switch (H5Iget_type(id_)) {
-      case H5I_FILE: H5Fclose(id_); break;
-      case H5I_GROUP: H5Gclose(id_); break;
-      case H5I_DATASET: H5Dclose(id_); break;
-      case H5I_DATASPACE: H5Sclose(id_); break;
-      case H5I_DATATYPE: H5Tclose(id_); break;
-      case H5I_ATTR: H5Aclose(id_); break;
-      case H5I_GENPROP_LST: H5Pclose(id_); break;
-      default: H5Idec_ref(id_); break;
+      case H5I_FILE:
+        H5Fclose(id_);
+        break;
+      case H5I_GROUP:
+        H5Gclose(id_);
+        break;
+      case H5I_DATASET:
+        H5Dclose(id_);
+        break;
+      case H5I_DATASPACE:
+        H5Sclose(id_);
+        break;
+      case H5I_DATATYPE:
+        H5Tclose(id_);
+        break;
+      case H5I_ATTR:
+        H5Aclose(id_);
+        break;
+      case H5I_GENPROP_LST:
+        H5Pclose(id_);
+        break;
+      default:
+        H5Idec_ref(id_);
+        break;
     }
   }
   id_ = H5I_INVALID_HID;
@@ -126,11 +142,17 @@ Hid simple_space(const std::vector<hsize_t>& dims) {
 template <class T>
 hid_t native_type();
 template <>
-hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
+hid_t native_type<double>() {
+  return H5T_NATIVE_DOUBLE;
+}
 template <>
-hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
+hid_t native_type<std::int64_t>() {
+  return H5T_NATIVE_INT64;
+}
 template <>
-hid_t native_type<std::uint8_t>() { return H5T_NATIVE_UINT8; }
+hid_t native_type<std::uint8_t>() {
+  return H5T_NATIVE_UINT8;
+}
 
 // Datasets at least this many elements are chunked and compressed (shuffle + deflate 1).
 constexpr std::size_t kCompressFrom = 1u << 16;
@@ -162,10 +184,10 @@ hsize_t checked_extent(hid_t d, hid_t file_type, const std::vector<hsize_t>& dim
 bool standard_number_type(hid_t t) {
   // (a damaged integer or float description, its precision or offset, sends libhdf5's conversion out of
   // bounds: only the standard layouts are converted)
-  for (hid_t s : {H5T_STD_I8LE, H5T_STD_I16LE, H5T_STD_I32LE, H5T_STD_I64LE, H5T_STD_U8LE, H5T_STD_U16LE,
-                  H5T_STD_U32LE, H5T_STD_U64LE, H5T_STD_I8BE, H5T_STD_I16BE, H5T_STD_I32BE, H5T_STD_I64BE,
-                  H5T_STD_U8BE, H5T_STD_U16BE, H5T_STD_U32BE, H5T_STD_U64BE, H5T_IEEE_F32LE, H5T_IEEE_F64LE,
-                  H5T_IEEE_F32BE, H5T_IEEE_F64BE})
+  for (hid_t s :
+       {H5T_STD_I8LE,  H5T_STD_I16LE, H5T_STD_I32LE,  H5T_STD_I64LE,  H5T_STD_U8LE,   H5T_STD_U16LE, H5T_STD_U32LE,
+        H5T_STD_U64LE, H5T_STD_I8BE,  H5T_STD_I16BE,  H5T_STD_I32BE,  H5T_STD_I64BE,  H5T_STD_U8BE,  H5T_STD_U16BE,
+        H5T_STD_U32BE, H5T_STD_U64BE, H5T_IEEE_F32LE, H5T_IEEE_F64LE, H5T_IEEE_F32BE, H5T_IEEE_F64BE})
     if (H5Tequal(t, s) > 0) return true;
   return false;
 }
@@ -356,7 +378,8 @@ std::vector<std::string> read_string_values(hid_t ftype, hsize_t count, ReadFn&&
   if (H5Tis_variable_str(ftype) > 0) {
     Hid t = vlen_string_type();
     std::vector<char*> ptrs(count, nullptr);
-    if (count > 0 && read_fn(t.get(), ptrs.data()) < 0) read_failed(where, "cannot read strings", count * sizeof(char*));
+    if (count > 0 && read_fn(t.get(), ptrs.data()) < 0)
+      read_failed(where, "cannot read strings", count * sizeof(char*));
     for (auto* p : ptrs) out.emplace_back(p ? p : "");
     for (auto* p : ptrs) std::free(p);
   } else {
@@ -365,7 +388,10 @@ std::vector<std::string> read_string_values(hid_t ftype, hsize_t count, ReadFn&&
     H5Tset_size(t.get(), size);
     std::vector<char> buf(size * count + 1, '\0');
     if (count > 0 && read_fn(t.get(), buf.data()) < 0) read_failed(where, "cannot read strings", buf.size());
-    for (hsize_t k = 0; k < count; ++k) out.emplace_back(strnlen(buf.data() + k * size, size) ? std::string(buf.data() + k * size, strnlen(buf.data() + k * size, size)) : "");
+    for (hsize_t k = 0; k < count; ++k)
+      out.emplace_back(strnlen(buf.data() + k * size, size)
+                           ? std::string(buf.data() + k * size, strnlen(buf.data() + k * size, size))
+                           : "");
   }
   return out;
 }
@@ -454,15 +480,14 @@ bool Group::has_attr(std::string_view name, std::string_view object) const {
 }
 
 Hid Group::open_attr(std::string_view name, std::string_view object) const {
-  if (!has_attr(name, object))
-    throw InputError(where(object) + ": no attribute '" + std::string(name) + "'");
+  if (!has_attr(name, object)) throw InputError(where(object) + ": no attribute '" + std::string(name) + "'");
   Hid a(H5Aopen_by_name(id(), std::string(object).c_str(), std::string(name).c_str(), H5P_DEFAULT, H5P_DEFAULT));
   if (a.get() < 0) throw InputError(where(object) + ": cannot open attribute '" + std::string(name) + "'");
   return a;
 }
 
 const std::vector<std::string>* Group::walked_strings(hid_t o, hid_t ftype, const std::string& attr,
-                                                     const std::string& what) const {
+                                                      const std::string& what) const {
   if (!walked_ || H5Tget_class(ftype) != H5T_STRING || H5Tis_variable_str(ftype) <= 0) return nullptr;
   H5O_info_t info;
   if (H5Oget_info2(o, &info, H5O_INFO_BASIC) < 0) throw InputError(what + ": damaged object header");
@@ -493,7 +518,8 @@ std::vector<T> read_numeric_attr(const Hid& a, const std::string& what) {
   if (!standard_number_type(ftype.get())) throw InputError(what + ": damaged or unusual number type");
   const std::size_t count = attribute_points(a, ftype, what);
   std::vector<T> out(count);
-  if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0) read_failed(what, "cannot read", count * sizeof(T));
+  if (count > 0 && H5Aread(a.get(), native_type<T>(), out.data()) < 0)
+    read_failed(what, "cannot read", count * sizeof(T));
   return out;
 }
 }  // namespace
@@ -525,8 +551,8 @@ Group open_stream(std::FILE* in, const std::string& name) {
   auto image = read_hdf5_image(in, name);
   auto strings = probe_hdf5_file(name, image.get());
   // Open the bytes in place: no copy; the buffer lives as long as any group of this file.
-  const hid_t fid = H5LTopen_file_image(image->data(), image->size(),
-                                        H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
+  const hid_t fid =
+      H5LTopen_file_image(image->data(), image->size(), H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
   if (fid < 0 && hdf5_out_of_memory()) throw OutOfMemory("opening " + name, image->size());
   if (fid < 0) throw InputError(name + ": holds a damaged HDF5 file");
   Hid file(fid);

@@ -123,7 +123,7 @@ class Group {
   std::vector<double> attr_doubles(std::string_view name, std::string_view object = ".") const;
 
  private:
-  std::shared_ptr<void> keep_alive_;  // declared first: outlives hid_ (an in-memory file image)
+  std::shared_ptr<void> keep_alive_;             // declared first: outlives hid_ (an in-memory file image)
   std::shared_ptr<const WalkedStrings> walked_;  // inputs only
   Hid hid_;
   std::string file_;

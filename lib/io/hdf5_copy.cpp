@@ -35,7 +35,8 @@ struct Copy {
       H5Aget_name(a.get(), name.size() + 1, name.data());
       Hid type(H5Aget_type(a.get())), space(H5Aget_space(a.get()));
       const hssize_t points = H5Sget_simple_extent_npoints(space.get());
-      std::vector<unsigned char> buffer(static_cast<std::size_t>(std::max<hssize_t>(points, 1)) * H5Tget_size(type.get()));
+      std::vector<unsigned char> buffer(static_cast<std::size_t>(std::max<hssize_t>(points, 1)) *
+                                        H5Tget_size(type.get()));
       if (H5Aread(a.get(), type.get(), buffer.data()) < 0) fail("attribute " + name);
       Hid b(H5Acreate2(dst, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT));
       const bool written = b.get() >= 0 && H5Awrite(b.get(), type.get(), buffer.data()) >= 0;

@@ -1,8 +1,8 @@
 #include "io/hdf5_image.hpp"
 
 #include <cerrno>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 
 #include "core/error.hpp"
@@ -68,8 +68,8 @@ std::shared_ptr<std::vector<char>> read_hdf5_image(std::FILE* in, const std::str
     }
     read_more(in, *image, rest, what);
     if (image->size() < eof)
-      throw InputError(what + ": truncated HDF5 file (" + std::to_string(image->size()) + " of " +
-                       std::to_string(eof) + " bytes)");
+      throw InputError(what + ": truncated HDF5 file (" + std::to_string(image->size()) + " of " + std::to_string(eof) +
+                       " bytes)");
     return image;
   }
   // No length recorded (a file still being written): to the end of the stream.

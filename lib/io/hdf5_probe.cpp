@@ -162,8 +162,10 @@ void walk_dataset(hid_t d, haddr_t address, const std::string& where) {
   if (count == 0) return;
   if (H5Tget_class(type.get()) == H5T_STRING) {  // strings (provenance, names): small, read whole
     auto read = [&](hid_t mtype, void* buf) { return H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf); };
-    if (variable_strings(type.get())) walk_strings(type.get(), space.get(), count, address, "", where, read);
-    else read_native(type.get(), space.get(), count, where, read);
+    if (variable_strings(type.get()))
+      walk_strings(type.get(), space.get(), count, address, "", where, read);
+    else
+      read_native(type.get(), space.get(), count, where, read);
     return;
   }
   // One element, through the chunk or block that holds it and the type conversion a reader uses.
@@ -309,17 +311,22 @@ std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, co
       const char type = received[at];
       const std::string payload = received.substr(at + 9, length);
       at += 9 + length;
-      if (type == '@') last_object = payload;
-      else if (type == '!' || type == 'm') verdict = std::string(1, type) + payload;
-      else if (type == 'k') verdict = "ok";
-      else if (type == 's' && !read_strings_message(payload, *strings)) garbled = done = true;
+      if (type == '@')
+        last_object = payload;
+      else if (type == '!' || type == 'm')
+        verdict = std::string(1, type) + payload;
+      else if (type == 'k')
+        verdict = "ok";
+      else if (type == 's' && !read_strings_message(payload, *strings))
+        garbled = done = true;
     }
     received.erase(0, at);
   }
   close(fds[0]);
   if (stalled || garbled) kill(pid, SIGKILL);
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
   if (stalled) throw InputError(describe(name, last_object, "libhdf5 makes no progress reading it"));
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && verdict == "ok" && !garbled) return strings;
   if (verdict.starts_with("m"))
@@ -331,7 +338,8 @@ std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, co
     throw InputError(describe(name, where, why));
   }
   if (WIFSIGNALED(status))
-    throw InputError(describe(name, last_object, std::string("libhdf5 fails reading it: ") + strsignal(WTERMSIG(status))));
+    throw InputError(
+        describe(name, last_object, std::string("libhdf5 fails reading it: ") + strsignal(WTERMSIG(status))));
   throw InputError(describe(name, last_object, "libhdf5 cannot read it"));
 }
 

@@ -94,9 +94,8 @@ std::string check_header(const Group& root, std::initializer_list<std::string_vi
   if (version.size() != 2)
     throw InputError(root.file() + ": attribute /format_version must hold two integers (major, minor)");
   if (version[0] != kFormatMajor)
-    throw InputError(root.file() + ": format version " + std::to_string(version[0]) + "." +
-                     std::to_string(version[1]) + " is not supported (this build reads " +
-                     std::to_string(kFormatMajor) + ".x)");
+    throw InputError(root.file() + ": format version " + std::to_string(version[0]) + "." + std::to_string(version[1]) +
+                     " is not supported (this build reads " + std::to_string(kFormatMajor) + ".x)");
   for (auto k : kinds)
     if (kind == k) return kind;
   std::string expected;
@@ -118,7 +117,8 @@ FileProvenance read_provenance(const Group& root) {
   const std::size_t n = time.size();
   if (tool.size() != n || version.size() != n || command.size() != n || uuid.size() != n || seed.size() != n)
     throw InputError(prov.where() + ": the history datasets differ in length");
-  for (std::size_t k = 0; k < n; ++k) out.history.push_back({time[k], tool[k], version[k], command[k], uuid[k], seed[k]});
+  for (std::size_t k = 0; k < n; ++k)
+    out.history.push_back({time[k], tool[k], version[k], command[k], uuid[k], seed[k]});
   return out;
 }
 

@@ -13,7 +13,9 @@ namespace {
 
 using mesh::Vec2;
 
-std::span<const double> flat(const std::vector<Vec2>& v) { return {v.empty() ? nullptr : v.data()->data(), 2 * v.size()}; }
+std::span<const double> flat(const std::vector<Vec2>& v) {
+  return {v.empty() ? nullptr : v.data()->data(), 2 * v.size()};
+}
 std::span<const std::int64_t> flat(const std::vector<std::array<std::int64_t, 2>>& v) {
   return {v.empty() ? nullptr : v.data()->data(), 2 * v.size()};
 }
@@ -100,7 +102,8 @@ void write_mesh(Group& root, const mesh::NodeMesh& m) {
 MeshKind mesh_kind(const Group& root) {
   if (root.has("particles/cells") && root.has("connectivity/beams")) return MeshKind::cells;
   if (root.has("particles/nodes") && root.has("connectivity/bonds")) return MeshKind::nodes;
-  throw InputError(root.file() + ": holds no mesh (neither /particles/cells with /connectivity/beams "
+  throw InputError(root.file() +
+                   ": holds no mesh (neither /particles/cells with /connectivity/beams "
                    "nor /particles/nodes with /connectivity/bonds)");
 }
 
@@ -157,7 +160,9 @@ mesh::CellMesh read_cell_mesh_as_stored(const Group& root) {
   const std::size_t n = m.area.size();
   if (m.vertex_offset.empty()) throw InputError(cells.where("vertex_offset") + ": empty (it holds cells + 1 offsets)");
   require_same_count(cells,
-                     {{"area", n}, {"centroid", m.centroid.size()}, {"second_moment", m.second_moment.size()},
+                     {{"area", n},
+                      {"centroid", m.centroid.size()},
+                      {"second_moment", m.second_moment.size()},
                       {"vertex_offset", m.vertex_offset.size() - 1}},
                      "cells");
   if (m.vertex_offset.front() != 0 || m.vertex_offset.back() != static_cast<std::int64_t>(m.vertex.size()))
@@ -171,8 +176,8 @@ mesh::CellMesh read_cell_mesh_as_stored(const Group& root) {
   m.beam = to_pairs(beams.read<std::int64_t>("pairs", nullptr, 2, 2));
   m.beam_length = beams.read<double>("length", nullptr, 1);
   m.beam_section = beams.read<double>("section", nullptr, 1);
-  require_same_count(beams, {{"pairs", m.beam.size()}, {"length", m.beam_length.size()}, {"section", m.beam_section.size()}},
-                     "beams");
+  require_same_count(
+      beams, {{"pairs", m.beam.size()}, {"length", m.beam_length.size()}, {"section", m.beam_section.size()}}, "beams");
   require_pairs_in_range(beams, "pairs", m.beam, n);
   return m;
 }

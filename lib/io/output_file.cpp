@@ -70,8 +70,10 @@ void OutputFile::commit(bool durable) {
       throw RuntimeError(path_ + ": cannot take the HDF5 file image");
     root_.reset();
     file_.reset();
-    if (stream_) stream_->write(image.data(), image.size());
-    else write_standard_output(image.data(), image.size());
+    if (stream_)
+      stream_->write(image.data(), image.size());
+    else
+      write_standard_output(image.data(), image.size());
   } else {
     root_.reset();
     if (H5Fclose(file_.release()) < 0)

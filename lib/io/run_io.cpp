@@ -31,7 +31,10 @@ std::uint64_t breaks_checksum(const std::vector<BreakEvent>& breaks) {
 
 RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const double> mass,
                      std::span<const double> inertia)
-    : root_(root), cells_(true), bodies_(mesh.cells()), links_(mesh.beams()),
+    : root_(root),
+      cells_(true),
+      bodies_(mesh.cells()),
+      links_(mesh.beams()),
       specs_(standard_trajectory(true, bodies_, links_)) {
   root_.set_attr("model", "dem");
   write_mesh(root_, mesh);
@@ -41,7 +44,10 @@ RunWriter::RunWriter(Group& root, const mesh::CellMesh& mesh, std::span<const do
 }
 
 RunWriter::RunWriter(Group& root, const mesh::NodeMesh& mesh, std::span<const double> mass)
-    : root_(root), cells_(false), bodies_(mesh.position.size()), links_(mesh.bond.size()),
+    : root_(root),
+      cells_(false),
+      bodies_(mesh.position.size()),
+      links_(mesh.bond.size()),
       specs_(standard_trajectory(false, bodies_, links_)) {
   root_.set_attr("model", "rubber");
   write_mesh(root_, mesh);
@@ -71,8 +77,8 @@ void RunWriter::declare_trajectory(std::vector<SeriesSpec> specs) {
 void RunWriter::create_trajectory() {
   for (const SeriesSpec& s : specs_) {
     Group g = root_.has(s.group) ? root_.group(s.group) : root_.create_group(s.group);
-    series_.push_back(std::make_unique<SeriesWriter>(g, s.name, s.dims, s.unit,
-                                                     s.flags ? SeriesType::uint8 : SeriesType::float64));
+    series_.push_back(
+        std::make_unique<SeriesWriter>(g, s.name, s.dims, s.unit, s.flags ? SeriesType::uint8 : SeriesType::float64));
   }
 }
 
@@ -138,7 +144,8 @@ void RunWriter::copy_progress(Group& to) {
   }
   to.write_strings(kObservableNames, names);
   write_breaks(to);
-  to.group(std::string("observables/") + breaks_name(cells_)).set_attr("checksum", static_cast<std::int64_t>(breaks_checksum(breaks_)));
+  to.group(std::string("observables/") + breaks_name(cells_))
+      .set_attr("checksum", static_cast<std::int64_t>(breaks_checksum(breaks_)));
 }
 
 void RunWriter::replay(const Group& from) {
@@ -146,7 +153,8 @@ void RunWriter::replay(const Group& from) {
     create_trajectory();
     for (std::size_t k = 0; k < series_.size(); ++k) series_[k]->replay(from.group(specs_[k].group), specs_[k].name);
   }
-  if (!from.has(kObservableNames)) throw InputError(from.where() + ": not a checkpoint's copy of a run (no observable_names)");
+  if (!from.has(kObservableNames))
+    throw InputError(from.where() + ": not a checkpoint's copy of a run (no observable_names)");
   for (const std::string& name : from.read_strings(kObservableNames)) {
     const Group obs = from.group("observables");
     const SeriesInfo info = read_series_info(obs, name);
@@ -156,7 +164,8 @@ void RunWriter::replay(const Group& from) {
   }
   breaks_ = read_breaks_at(from, cells_);
   const Group breaks = from.group(std::string("observables/") + breaks_name(cells_));
-  if (!breaks.has_attr("checksum") || breaks.attr_int("checksum") != static_cast<std::int64_t>(breaks_checksum(breaks_)))
+  if (!breaks.has_attr("checksum") ||
+      breaks.attr_int("checksum") != static_cast<std::int64_t>(breaks_checksum(breaks_)))
     throw InputError(breaks.where() + ": damaged (the events do not match their checksum)");
 }
 
@@ -177,7 +186,8 @@ void RunWriter::write_breaks(Group& root) const {
   g.write("time", std::span<const double>(time), {k}, "s");
   g.write("index", std::span<const std::int64_t>(index), {k});
   g.write("mode", std::span<const std::uint8_t>(mode), {k});
-  g.set_attr("mode_meaning", cells_ ? "1 the stretching term of the breaking rule dominated, 2 the bending term" : "1 separation past u_c");
+  g.set_attr("mode_meaning", cells_ ? "1 the stretching term of the breaking rule dominated, 2 the bending term"
+                                    : "1 separation past u_c");
 }
 
 RunInfo read_run_info(const Group& root) {

@@ -14,8 +14,8 @@
 //   both:   /observables/<name>/{step, time, value}, /observables/beam_breaks (or bond_breaks):
 //           step [K], time [K], index [K], mode [K] (1 stretching dominated, 2 bending dominated; rubber: 1)
 #include <cstdint>
-#include <memory>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -104,7 +104,7 @@ class RunWriter {
 
 // What a reader of a run file needs: the model, the static body data and the frame list.
 struct RunInfo {
-  std::string model;  // "dem" or "rubber"
+  std::string model;                  // "dem" or "rubber"
   std::vector<double> mass, inertia;  // inertia empty for rubber
   std::vector<std::int64_t> step;     // of the trajectory frames
   std::vector<double> time;

@@ -37,20 +37,22 @@ Hid create_extendible(const Group& g, const char* name, hid_t file_type, const s
     H5Pset_deflate(dcpl.get(), 1);
   }
   Hid d(H5Dcreate2(g.id(), name, file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
-  if (d.get() < 0) throw RuntimeError(g.where(name) + ": cannot create dataset (" + write_failure(g.file(), errno) + ")");
+  if (d.get() < 0)
+    throw RuntimeError(g.where(name) + ": cannot create dataset (" + write_failure(g.file(), errno) + ")");
   return d;
 }
 
 // Writes `rows` rows from `data` at row `row`, extending the dataset to row + rows.
-void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type, const void* data,
-                 std::size_t row, std::size_t rows, const std::vector<hsize_t>& frame_dims) {
+void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type, const void* data, std::size_t row,
+                 std::size_t rows, const std::vector<hsize_t>& frame_dims) {
   std::vector<hsize_t> dims{row + rows}, start{row}, count{rows};
   for (auto fd : frame_dims) {
     dims.push_back(fd);
     start.push_back(0);
     count.push_back(fd);
   }
-  if (H5Dset_extent(d.get(), dims.data()) < 0) throw RuntimeError(g.where(name) + ": cannot extend dataset (" + write_failure(g.file(), errno) + ")");
+  if (H5Dset_extent(d.get(), dims.data()) < 0)
+    throw RuntimeError(g.where(name) + ": cannot extend dataset (" + write_failure(g.file(), errno) + ")");
   Hid fspace(H5Dget_space(d.get()));
   H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
   Hid mspace(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
@@ -61,8 +63,8 @@ void append_rows(const Group& g, const char* name, const Hid& d, hid_t mem_type,
 
 }  // namespace
 
-SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsize_t> frame_dims,
-                           std::string_view unit, SeriesType type)
+SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsize_t> frame_dims, std::string_view unit,
+                           SeriesType type)
     : group_(parent.create_group(name)), frame_dims_(std::move(frame_dims)), type_(type) {
   for (auto d : frame_dims_) frame_size_ *= d;
   rows_per_chunk_ = chunk_rows(frame_size_);
@@ -84,8 +86,7 @@ SeriesWriter::SeriesWriter(Group& parent, std::string_view name, std::vector<hsi
   if (!unit.empty()) group_.set_attr("unit", unit, "value");
 }
 
-void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame,
-                              std::size_t count) {
+void SeriesWriter::append_raw(std::int64_t step, double time, hid_t mem_type, const void* frame, std::size_t count) {
   if (count != frame_size_)
     throw RuntimeError(group_.where("value") + ": frame of " + std::to_string(count) + " values, expected " +
                        std::to_string(frame_size_));
@@ -164,8 +165,7 @@ SeriesInfo read_series_info(const Group& parent, std::string_view name) {
   SeriesInfo info;
   info.step = g.read<std::int64_t>("step", nullptr, 1);
   info.time = g.read<double>("time", nullptr, 1);
-  if (info.step.size() != info.time.size())
-    throw InputError(g.where() + ": step and time have different lengths");
+  if (info.step.size() != info.time.size()) throw InputError(g.where() + ": step and time have different lengths");
   Hid d(H5Dopen2(g.id(), "value", H5P_DEFAULT));
   if (d.get() < 0) throw InputError(g.where("value") + ": no such dataset");
   Hid space(H5Dget_space(d.get()));
@@ -207,7 +207,7 @@ std::vector<T> read_series_rows(const Group& parent, std::string_view name, cons
   } catch (const std::bad_alloc&) {
     throw OutOfMemory("reading " + g.where("value"), size * sizeof(T));
   }
-  hid_t mem = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE
+  hid_t mem = std::is_same_v<T, double>         ? H5T_NATIVE_DOUBLE
               : std::is_same_v<T, std::int64_t> ? H5T_NATIVE_INT64
                                                 : H5T_NATIVE_UINT8;
   if (size > 0 && H5Dread(d.get(), mem, mspace.get(), fspace.get(), H5P_DEFAULT, out.data()) < 0)
@@ -242,9 +242,15 @@ void SeriesWriter::replay(const Group& parent, std::string_view name) {
         append_raw(info.step[first + r], info.time[first + r], mem_type, values.data() + r * frame_size_, frame_size_);
     };
     switch (type_) {
-      case SeriesType::float64: append_rows_of(read_series_rows<double>(parent, name, info, first, rows), H5T_NATIVE_DOUBLE); break;
-      case SeriesType::int64: append_rows_of(read_series_rows<std::int64_t>(parent, name, info, first, rows), H5T_NATIVE_INT64); break;
-      case SeriesType::uint8: append_rows_of(read_series_rows<std::uint8_t>(parent, name, info, first, rows), H5T_NATIVE_UINT8); break;
+      case SeriesType::float64:
+        append_rows_of(read_series_rows<double>(parent, name, info, first, rows), H5T_NATIVE_DOUBLE);
+        break;
+      case SeriesType::int64:
+        append_rows_of(read_series_rows<std::int64_t>(parent, name, info, first, rows), H5T_NATIVE_INT64);
+        break;
+      case SeriesType::uint8:
+        append_rows_of(read_series_rows<std::uint8_t>(parent, name, info, first, rows), H5T_NATIVE_UINT8);
+        break;
     }
   }
   if (static_cast<std::int64_t>(checksum_.h) != copy.attr_int("checksum"))

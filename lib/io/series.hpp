@@ -57,10 +57,10 @@ class SeriesWriter {
   std::size_t frames_ = 0;   // appended
   std::size_t written_ = 0;  // in the file
   std::size_t rows_per_chunk_ = 1;
-  std::size_t chunk_first_ = 0;  // first frame of the chunk being filled, whose values are buffered
-  std::vector<std::int64_t> step_buffer_;      // frames [written_, frames_)
-  std::vector<double> time_buffer_;            // frames [written_, frames_)
-  std::vector<unsigned char> value_buffer_;    // frames [chunk_first_, frames_)
+  std::size_t chunk_first_ = 0;              // first frame of the chunk being filled, whose values are buffered
+  std::vector<std::int64_t> step_buffer_;    // frames [written_, frames_)
+  std::vector<double> time_buffer_;          // frames [written_, frames_)
+  std::vector<unsigned char> value_buffer_;  // frames [chunk_first_, frames_)
 };
 
 struct SeriesInfo {

@@ -53,7 +53,6 @@ void write_front(Group& m, std::size_t k, const MeasuredSpeed& x, const std::str
   f.write("used", std::span<const std::uint8_t>(x.used), {b});
 }
 
-
 // /speeds/measured: the run's measurement, one row per front, and each front's arrivals under fronts/<k>.
 void write_measured(Group& s, const SpeedsRecord& r) {
   Group m = s.create_group("measured");
@@ -79,18 +78,30 @@ void write_measured(Group& s, const SpeedsRecord& r) {
     const auto v = column<double>(r.measured, f);
     m.write(name, std::span<const double>(v), {n}, unit);
   };
-  put("direction", [](const auto& x) { return x.direction; }, "rad");
-  put("speed", [](const auto& x) { return x.speed; }, "m s-1");
-  put("speed_stderr", [](const auto& x) { return x.speed_stderr; }, "m s-1");
-  put("intercept", [](const auto& x) { return x.intercept; }, "s");
-  put("residual_rms", [](const auto& x) { return x.residual_rms; }, "s");
-  put("frame_bound", [](const auto& x) { return x.frame_bound; }, "m s-1");
-  put("range_min", [](const auto& x) { return x.range_min; }, "m");
-  put("range_max", [](const auto& x) { return x.range_max; }, "m");
-  put("predicted", [](const auto& x) { return x.predicted; }, "m s-1");
-  put("deviation", [](const auto& x) { return x.deviation; }, "1");
-  put("lattice_predicted", [](const auto& x) { return x.lattice_predicted; }, "m s-1");
-  put("lattice_deviation", [](const auto& x) { return x.lattice_deviation; }, "1");
+  put(
+      "direction", [](const auto& x) { return x.direction; }, "rad");
+  put(
+      "speed", [](const auto& x) { return x.speed; }, "m s-1");
+  put(
+      "speed_stderr", [](const auto& x) { return x.speed_stderr; }, "m s-1");
+  put(
+      "intercept", [](const auto& x) { return x.intercept; }, "s");
+  put(
+      "residual_rms", [](const auto& x) { return x.residual_rms; }, "s");
+  put(
+      "frame_bound", [](const auto& x) { return x.frame_bound; }, "m s-1");
+  put(
+      "range_min", [](const auto& x) { return x.range_min; }, "m");
+  put(
+      "range_max", [](const auto& x) { return x.range_max; }, "m");
+  put(
+      "predicted", [](const auto& x) { return x.predicted; }, "m s-1");
+  put(
+      "deviation", [](const auto& x) { return x.deviation; }, "1");
+  put(
+      "lattice_predicted", [](const auto& x) { return x.lattice_predicted; }, "m s-1");
+  put(
+      "lattice_deviation", [](const auto& x) { return x.lattice_deviation; }, "1");
   const auto points = column<std::int64_t>(r.measured, [](const auto& x) { return x.points; });
   const auto rejected = column<std::int64_t>(r.measured, [](const auto& x) { return x.rejected; });
   m.write("points", std::span<const std::int64_t>(points), {n});

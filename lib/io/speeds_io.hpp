@@ -17,19 +17,19 @@ namespace frac::io {
 inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 struct MeasuredSpeed {
-  std::string label;      // "longitudinal.x": mode and direction label, unique in the file
-  std::string mode;       // longitudinal | shear
-  double direction = 0;   // rad, lab, from +x
+  std::string label;     // "longitudinal.x": mode and direction label, unique in the file
+  std::string mode;      // longitudinal | shear
+  double direction = 0;  // rad, lab, from +x
   bool ok = false;
-  std::string failure;    // why not ok
+  std::string failure;                               // why not ok
   double speed = kNoValue, speed_stderr = kNoValue;  // m/s, lab
-  double intercept = kNoValue;   // s: arrival = intercept + distance / speed
-  double residual_rms = kNoValue;  // s
-  double frame_bound = kNoValue;   // m/s, worst-case error of whole-frame arrivals (see analysis/wave_speed.hpp)
+  double intercept = kNoValue;                       // s: arrival = intercept + distance / speed
+  double residual_rms = kNoValue;                    // s
+  double frame_bound = kNoValue;  // m/s, worst-case error of whole-frame arrivals (see analysis/wave_speed.hpp)
   std::int64_t points = 0, rejected = 0;
   double range_min = 0, range_max = 0;  // m
-  double predicted = kNoValue;  // m/s, lab prediction for this mode and direction (NaN: none)
-  double deviation = kNoValue;  // speed / predicted - 1 (NaN: not compared)
+  double predicted = kNoValue;          // m/s, lab prediction for this mode and direction (NaN: none)
+  double deviation = kNoValue;          // speed / predicted - 1 (NaN: not compared)
   // The lattice's own long-wave speed at the run's cut-off when the run records it (rubber-run:
   // derived.lattice.*), and speed / that - 1. NaN: none.
   double lattice_predicted = kNoValue, lattice_deviation = kNoValue;
@@ -39,9 +39,9 @@ struct MeasuredSpeed {
 };
 
 struct PredictedSpeed {
-  std::string label;     // direction label: x, y, -x, -y or "40deg"
-  double direction = 0;  // rad, lab
-  double longitudinal = kNoValue, shear = kNoValue;  // m/s, lab
+  std::string label;                                                     // direction label: x, y, -x, -y or "40deg"
+  double direction = 0;                                                  // rad, lab
+  double longitudinal = kNoValue, shear = kNoValue;                      // m/s, lab
   double longitudinal_reference = kNoValue, shear_reference = kNoValue;  // m/s, omega/|k_ref| (NaN: not defined)
 };
 
@@ -55,28 +55,28 @@ struct SpeedsRecord {
   std::string origin;  // "run" (measured, maybe compared) or "theory" (predicted only)
 
   // Measurement (origin "run").
-  std::string model;             // rubber | dem
-  std::string signal;            // displacement | velocity | strain
-  std::string arrival;           // threshold | peak
-  std::string amplitude;         // local | global | absolute
+  std::string model;      // rubber | dem
+  std::string signal;     // displacement | velocity | strain
+  std::string arrival;    // threshold | peak
+  std::string amplitude;  // local | global | absolute
   double threshold = kNoValue;
   std::array<double, 2> source{kNoValue, kNoValue};  // m, lab
-  std::string source_from;       // option | parameters | frames
-  double frame_interval = kNoValue;  // s
+  std::string source_from;                           // option | parameters | frames
+  double frame_interval = kNoValue;                  // s
   std::int64_t frames = 0;
-  double bin = kNoValue;         // m
+  double bin = kNoValue;                          // m
   std::array<double, 4> deformation{1, 0, 0, 1};  // F of the first frame, row-major
   std::vector<MeasuredSpeed> measured;
 
   // Prediction.
-  std::string theory;     // "" (none) | mooney-rivlin | plane-stress
-  std::string formulas;   // the formulas used, as text
+  std::string theory;                  // "" (none) | mooney-rivlin | plane-stress
+  std::string formulas;                // the formulas used, as text
   std::vector<NamedValue> parameters;  // a, b, density, stretch_x, stretch_y | young, poisson, density
   std::vector<PredictedSpeed> predicted;
-  std::vector<NamedValue> stress;      // Mooney-Rivlin: piola_xx, piola_yy, cauchy_xx, cauchy_yy (N/m)
+  std::vector<NamedValue> stress;  // Mooney-Rivlin: piola_xx, piola_yy, cauchy_xx, cauchy_yy (N/m)
 
   // Lattice check (rubber).
-  std::string lattice_regime;   // "" (not checked) | mooney-rivlin | short-bonds | near-cutoff | broken | unchecked
+  std::string lattice_regime;  // "" (not checked) | mooney-rivlin | short-bonds | near-cutoff | broken | unchecked
   std::string lattice_message;
   std::vector<double> bond_angle, bond_length;  // rad (reference direction), m (at the stretch)
 

@@ -41,13 +41,16 @@ std::optional<Shape> dataset_shape(const Group& g, const std::string& name) {
   H5Sget_simple_extent_dims(space.get(), s.dims.data(), nullptr);
   s.precision = H5Tget_size(type.get());
   switch (H5Tget_class(type.get())) {
-    case H5T_FLOAT: s.number_type = "Float"; break;
+    case H5T_FLOAT:
+      s.number_type = "Float";
+      break;
     case H5T_INTEGER: {
       const bool is_signed = H5Tget_sign(type.get()) == H5T_SGN_2;
       s.number_type = s.precision == 1 ? (is_signed ? "Char" : "UChar") : (is_signed ? "Int" : "UInt");
       break;
     }
-    default: return std::nullopt;  // strings and compound types: nothing to show
+    default:
+      return std::nullopt;  // strings and compound types: nothing to show
   }
   return s;
 }
@@ -128,8 +131,8 @@ class Writer {
 };
 
 struct Field {
-  std::string name;   // attribute name
-  std::string path;   // dataset path, absolute
+  std::string name;  // attribute name
+  std::string path;  // dataset path, absolute
   Shape shape;
   bool series = false;  // value [T, ...]: one hyperslab per frame
   std::string file;     // which HDF5 file (the data file or the fragments file)
@@ -175,8 +178,10 @@ void attributes(Writer& w, int indent, const std::vector<Field>& fields, const c
   for (const auto& f : fields) {
     w.line(indent, "<Attribute Name=\"" + xml_escape(f.name) + "\" AttributeType=\"" +
                        attribute_type(f.shape, f.series) + "\" Center=\"" + center + "\">");
-    if (f.series) w.frame_slab(indent + 1, f.file, f.path, f.shape, frame);
-    else w.hdf(indent + 1, f.file, f.path, f.shape);
+    if (f.series)
+      w.frame_slab(indent + 1, f.file, f.path, f.shape, frame);
+    else
+      w.hdf(indent + 1, f.file, f.path, f.shape);
     w.line(indent, "</Attribute>");
   }
 }
@@ -186,7 +191,7 @@ struct Sidecar {
   std::string kind;
   bool run = false, cells = true;
   std::string body_group, link_group, body_name, link_name, ref_name;
-  std::string file;  // the data file, as the sidecar names it
+  std::string file;                      // the data file, as the sidecar names it
   std::size_t n = 0, b = 0, frames = 0;  // bodies, links, frames
   std::optional<Shape> ref, pairs, position;
   std::vector<double> time;
@@ -299,7 +304,8 @@ void write_polygons(Writer& w, const mesh::CellMesh& m, XdmfReport& rep) {
   rep.polygon_vertices = m.vertex.size();
   w.line(2, "<Topology Name=\"reference_polygons\" TopologyType=\"Mixed\" NumberOfElements=\"" +
                 std::to_string(m.cells()) + "\">");
-  w.line(3, "<DataItem Dimensions=\"" + std::to_string(length) + "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">");
+  w.line(3,
+         "<DataItem Dimensions=\"" + std::to_string(length) + "\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">");
   w.text += topo;
   w.line(3, "</DataItem>");
   w.line(2, "</Topology>");
@@ -325,8 +331,10 @@ void polygons_grid(Writer& w, const Sidecar& s, int indent, std::optional<std::s
 // The points' geometry: a frame's positions, or the reference geometry of a mesh.
 void points_geometry(Writer& w, const Sidecar& s, int indent, std::optional<std::size_t> frame) {
   w.line(indent, "<Geometry GeometryType=\"XY\">");
-  if (frame) w.frame_slab(indent + 1, s.file, "/" + s.body_group + "/position/value", *s.position, *frame);
-  else w.hdf(indent + 1, s.file, "/" + s.body_group + "/" + s.ref_name, *s.ref);
+  if (frame)
+    w.frame_slab(indent + 1, s.file, "/" + s.body_group + "/position/value", *s.position, *frame);
+  else
+    w.hdf(indent + 1, s.file, "/" + s.body_group + "/" + s.ref_name, *s.ref);
   w.line(indent, "</Geometry>");
 }
 
@@ -342,8 +350,8 @@ void points_grid(Writer& w, const Sidecar& s, int indent, std::optional<std::siz
 void links_grid(Writer& w, const Sidecar& s, int indent, std::optional<std::size_t> frame) {
   w.line(indent, "<Grid Name=\"" + s.link_name + "\" GridType=\"Uniform\">");
   if (frame) w.line(indent + 1, "<Time Value=\"" + number(s.time[*frame]) + "\"/>");
-  w.line(indent + 1, "<Topology TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(s.b) +
-                         "\" NodesPerElement=\"2\">");
+  w.line(indent + 1,
+         "<Topology TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(s.b) + "\" NodesPerElement=\"2\">");
   w.hdf(indent + 2, s.file, "/" + s.link_group + "/pairs", *s.pairs);
   w.line(indent + 1, "</Topology>");
   points_geometry(w, s, indent + 1, frame);
@@ -381,8 +389,10 @@ std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport*
   s.cells = mesh_kind(root) == MeshKind::cells;
   // The mesh validated as every tool reads it: no sidecar for a mesh no tool may run on.
   std::optional<mesh::CellMesh> cell_mesh;
-  if (s.cells) cell_mesh = read_cell_mesh(root);
-  else read_node_mesh(root);
+  if (s.cells)
+    cell_mesh = read_cell_mesh(root);
+  else
+    read_node_mesh(root);
   s.body_group = s.cells ? "particles/cells" : "particles/nodes";
   s.link_group = s.cells ? "connectivity/beams" : "connectivity/bonds";
   s.body_name = s.cells ? "cells" : "nodes";
@@ -408,8 +418,8 @@ std::string xdmf_document(const Group& root, const XdmfOptions& opt, XdmfReport*
   w.line(2, "<Information Name=\"fracture\" Value=\"XDMF sidecar of " + xml_escape(s.file) + " (" + s.kind + ", " +
                 (s.cells ? "polygon cells" : "rubber nodes") + "): docs/xdmf.md\"/>");
   if (!opt.provenance.empty())
-    w.line(2, "<Information Name=\"" + std::string(kProvenanceKey) + "\" Value=\"" + xml_escape(opt.provenance) +
-                  "\"/>");
+    w.line(2,
+           "<Information Name=\"" + std::string(kProvenanceKey) + "\" Value=\"" + xml_escape(opt.provenance) + "\"/>");
   for (const auto& f : s.body_fields)
     if (!f.series) s.statics.push_back(f);
   write_grids(w, s);
@@ -423,8 +433,8 @@ std::string relative_reference(const std::string& target, const std::string& fro
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path abs_target = fs::absolute(target, ec).lexically_normal();
-  const fs::path base = from_file == "-" ? fs::current_path(ec)
-                                         : fs::absolute(from_file, ec).lexically_normal().parent_path();
+  const fs::path base =
+      from_file == "-" ? fs::current_path(ec) : fs::absolute(from_file, ec).lexically_normal().parent_path();
   const fs::path rel = abs_target.lexically_relative(base);
   const std::string ref = rel.empty() ? abs_target.string() : rel.string();
   // XDMF writes "file:/dataset": a colon in the file's name would end the name there.

@@ -36,7 +36,8 @@ CellMesh make_cell_mesh(const std::vector<std::vector<Vec2>>& polygons,
   m.beam = beams;
   m.beam_section = sections;
   for (const auto& b : beams)
-    m.beam_length.push_back((m.centroid[static_cast<std::size_t>(b[1])] - m.centroid[static_cast<std::size_t>(b[0])]).norm());
+    m.beam_length.push_back(
+        (m.centroid[static_cast<std::size_t>(b[1])] - m.centroid[static_cast<std::size_t>(b[0])]).norm());
   return m;
 }
 

@@ -18,8 +18,8 @@ struct CellMesh {
   // in the body frame (relative to its centroid). vertex_offset has size cells + 1.
   std::vector<std::int64_t> vertex_offset{0};
   std::vector<Vec2> vertex;
-  std::vector<Vec2> centroid;        // m, reference position of each cell's centroid
-  std::vector<double> area;          // m^2
+  std::vector<Vec2> centroid;         // m, reference position of each cell's centroid
+  std::vector<double> area;           // m^2
   std::vector<double> second_moment;  // m^4, polar second moment of area about the centroid
 
   // Beams: one per pair of cells sharing a side of positive length, cell_a < cell_b, sorted.
@@ -28,11 +28,11 @@ struct CellMesh {
   std::vector<double> beam_section;  // m, length of the shared side (S)
 
   // How the mesh was made (recorded as attributes of /particles/cells).
-  std::string shape;          // "rect" or "disc"
-  double spacing = 0.0;       // m, grid cell size g of the vectorizable random lattice
-  double disorder = 0.0;      // a / g in [0, 1]
+  std::string shape;                       // "rect" or "disc"
+  double spacing = 0.0;                    // m, grid cell size g of the vectorizable random lattice
+  double disorder = 0.0;                   // a / g in [0, 1]
   std::string disorder_region = "square";  // "square" (offsets in [-a/2, a/2]^2) or "disc" (radius a)
-  std::array<double, 4> bounds{};  // m, domain box: xmin, ymin, xmax, ymax
+  std::array<double, 4> bounds{};          // m, domain box: xmin, ymin, xmax, ymax
 
   std::size_t cells() const { return centroid.size(); }
   std::size_t beams() const { return beam.size(); }

@@ -91,14 +91,17 @@ void check_overlaps(const CellMesh& m, double len_tol, double g, Failures& fail)
   const OverlapSearch s = find_cell_overlaps(m, len_tol, g, 10);
   for (const CellOverlap& o : s.found) {
     const double smaller = std::min(m.area[o.a], m.area[o.b]);
-    const std::string by = std::isnan(o.area) ? ""
-                           : " by " + fmt(o.area) + " m^2 (" + std::to_string(std::lround(100 * o.area / smaller)) + "% of the smaller)";
+    const std::string by = std::isnan(o.area)
+                               ? ""
+                               : " by " + fmt(o.area) + " m^2 (" + std::to_string(std::lround(100 * o.area / smaller)) +
+                                     "% of the smaller)";
     fail.add("overlap", "cells " + std::to_string(o.a) + " and " + std::to_string(o.b) + " overlap" + by +
                             ", centroids " + fmt((m.centroid[o.b] - m.centroid[o.a]).norm()) + " m apart");
   }
   if (!s.complete)
-    fail.add("overlap", "not checked: cell " + std::to_string(s.widest) + " reaches so far beyond the others that "
-                        "comparing the cells would take more than linear time");
+    fail.add("overlap", "not checked: cell " + std::to_string(s.widest) +
+                            " reaches so far beyond the others that "
+                            "comparing the cells would take more than linear time");
 }
 
 // The arrays of a cell mesh agree in size, and every cell has at least 3 vertices. Nothing else can be
@@ -249,8 +252,8 @@ std::string cell_mesh_summary(const CellMesh& m, double total_area, const std::m
   s.precision(6);
   s << "cells: " << n << " (" << (m.shape.empty() ? "?" : m.shape) << ", spacing " << m.spacing << " m, disorder "
     << m.disorder << ", region " << m.disorder_region << ")\n";
-  s << "beams: " << m.beams() << " ("
-    << (n > 0 ? 2.0 * static_cast<double>(m.beams()) / static_cast<double>(n) : 0.0) << " per cell)\n";
+  s << "beams: " << m.beams() << " (" << (n > 0 ? 2.0 * static_cast<double>(m.beams()) / static_cast<double>(n) : 0.0)
+    << " per cell)\n";
   s << "total area: " << total_area << " m^2, mean area: " << total_area / static_cast<double>(n) << " m^2\n";
   s << "beams per cell: " << histogram_line(neighbours, n) << "\n";
   return s.str();
@@ -264,8 +267,8 @@ bool node_arrays_consistent(const NodeMesh& m, Failures& fail) {
     fail.add("nodes", "nx = " + std::to_string(m.nx) + ", ny = " + std::to_string(m.ny) + ": negative");
   } else if (m.nx > 0 && m.ny > 0 &&
              (m.nx > static_cast<std::int64_t>(n) / m.ny || m.nx * m.ny != static_cast<std::int64_t>(n))) {
-    fail.add("nodes", std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx) + " * " +
-                          std::to_string(m.ny));
+    fail.add("nodes",
+             std::to_string(n) + " positions but nx * ny = " + std::to_string(m.nx) + " * " + std::to_string(m.ny));
   }
   if (m.bond_length.size() != m.bonds() || m.intact.size() != m.bonds()) {
     fail.add("arrays", "bond_length/intact sizes differ from the number of bonds");
@@ -403,8 +406,7 @@ MeshReport check_node_mesh(const NodeMesh& m) {
       if (!node_arrays_consistent(m, fail)) return;
       if (!node_values_finite(m, fail)) return;
       if (m.spacing < 0) fail.add("spacing", fmt(m.spacing) + " m is negative");
-      if (m.rows_along != "x" && m.rows_along != "y")
-        fail.add("rows_along", "'" + m.rows_along + "': expected x or y");
+      if (m.rows_along != "x" && m.rows_along != "y") fail.add("rows_along", "'" + m.rows_along + "': expected x or y");
       if (m.notch_length < 0) fail.add("notch", "notch_length " + fmt(m.notch_length) + " m is negative");
 
       std::vector<int> degree(m.nodes(), 0);

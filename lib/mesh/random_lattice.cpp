@@ -206,8 +206,7 @@ void to_body_frames(CellMesh& m) {
 
 // Beams between kept neighbours whose shared side is positive and at least min_side. Neighbour pairs come
 // sorted (a < b) from voronoi_in_box and the renumbering keeps the order.
-void add_beams(const FlatVoronoiDiagram& vd, const std::vector<std::int64_t>& new_index, double min_side,
-               CellMesh& m) {
+void add_beams(const FlatVoronoiDiagram& vd, const std::vector<std::int64_t>& new_index, double min_side, CellMesh& m) {
   m.beam.reserve(vd.neighbour.size());
   m.beam_length.reserve(vd.neighbour.size());
   m.beam_section.reserve(vd.neighbour.size());
@@ -250,7 +249,8 @@ CellMesh make_random_lattice(const RandomLatticeOptions& opt) try {
   add_beams(vd, new_index, opt.min_section * g, m);
   return m;
 } catch (const std::bad_alloc&) {
-  throw out_of_memory("the Voronoi mesh of " + std::to_string(opt.shape == "disc" ? opt.cells : opt.nx * opt.ny) + " cells");
+  throw out_of_memory("the Voronoi mesh of " + std::to_string(opt.shape == "disc" ? opt.cells : opt.nx * opt.ny) +
+                      " cells");
 }
 
 }  // namespace frac::mesh

@@ -21,15 +21,15 @@
 namespace frac::mesh {
 
 struct RandomLatticeOptions {
-  std::string shape = "rect";        // "rect" or "disc"
-  double width = 0.0, height = 0.0;  // m, rectangle size
-  std::int64_t nx = 0, ny = 0;       // rectangle: grid cells along x and y (spacing = width / nx)
-  double diameter = 0.0;             // m, disc diameter
-  std::int64_t cells = 0;            // disc: requested number of cells (spacing = sqrt(pi R^2 / cells))
-  double disorder = 1.0;             // a / g in [0, 1]
+  std::string shape = "rect";              // "rect" or "disc"
+  double width = 0.0, height = 0.0;        // m, rectangle size
+  std::int64_t nx = 0, ny = 0;             // rectangle: grid cells along x and y (spacing = width / nx)
+  double diameter = 0.0;                   // m, disc diameter
+  std::int64_t cells = 0;                  // disc: requested number of cells (spacing = sqrt(pi R^2 / cells))
+  double disorder = 1.0;                   // a / g in [0, 1]
   std::string disorder_region = "square";  // "square" or "disc"
   std::uint64_t seed = 1;
-  double min_section = 1e-6;         // beams whose shared side is below min_section * g are dropped
+  double min_section = 1e-6;  // beams whose shared side is below min_section * g are dropped
 };
 
 // Throws UsageError (naming the option) for invalid options.

@@ -35,8 +35,8 @@ void validate(const TriangularLatticeOptions& opt) {
   }
   const double d = opt.spacing;
   const double h = d * std::sqrt(3.0) / 2.0;
-  const double width = opt.rows_along == "x" ? static_cast<double>(opt.nx - 1) * d + 0.5 * d
-                                             : static_cast<double>(opt.nx - 1) * h;
+  const double width =
+      opt.rows_along == "x" ? static_cast<double>(opt.nx - 1) * d + 0.5 * d : static_cast<double>(opt.nx - 1) * h;
   if (!(std::isfinite(opt.notch) && opt.notch >= 0.0 && opt.notch < width)) {
     throw UsageError("--notch: must lie in [0, " + fmt(width) + ") m (the lattice width), got " + fmt(opt.notch));
   }

@@ -96,8 +96,7 @@ void rotate_to_canonical_start(Polygon& poly) {
 // strictly inside the convex hull, so its cell is bounded. A box point is at most d from any site in the
 // box and more than 3.7 d from a dummy, so as long as one site lies in the box no dummy cell reaches into
 // the box.
-void triangulate_with_dummies(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box,
-                              Delaunay& dt) {
+void triangulate_with_dummies(std::span<const geometry::Vec2> sites, const std::array<double, 4>& box, Delaunay& dt) {
   const std::size_t n = sites.size();
   const double width = box[2] - box[0], height = box[3] - box[1];
   std::vector<std::pair<Point, std::int64_t>> points;

@@ -19,8 +19,8 @@
 namespace frac::render {
 namespace {
 
-constexpr double kTitleHeight = 34, kPad = 12, kAxesLeft = 80, kAxesBottom = 52, kBarColumn = 104,
-                 kLegendColumn = 170, kMinHeight = 280;
+constexpr double kTitleHeight = 34, kPad = 12, kAxesLeft = 80, kAxesBottom = 52, kBarColumn = 104, kLegendColumn = 170,
+                 kMinHeight = 280;
 constexpr const char* kFont = "DejaVu Sans";
 
 std::string lower(std::string s) {
@@ -32,8 +32,8 @@ std::string lower(std::string s) {
 struct Layout {
   int width = 0, height = 0;
   double plot_x = 0, plot_y = 0, plot_w = 0, plot_h = 0;  // plot area
-  double scale = 1;                                      // pixels per metre
-  double ox = 0, oy = 0;                                 // pixel of (view xmin, view ymax)
+  double scale = 1;                                       // pixels per metre
+  double ox = 0, oy = 0;                                  // pixel of (view xmin, view ymax)
   const std::array<double, 4>* view = nullptr;
   double px(double x) const { return ox + scale * (x - (*view)[0]); }
   double py(double y) const { return oy + scale * ((*view)[3] - y); }
@@ -83,8 +83,10 @@ std::string format_tick(double v, double step) {
   if (std::abs(v) < 1e-9 * std::abs(step)) v = 0.0;
   char buf[32];
   const double a = std::abs(v);
-  if (v != 0.0 && (a >= 1e4 || a < 1e-3)) std::snprintf(buf, sizeof buf, "%.3g", v);
-  else std::snprintf(buf, sizeof buf, "%.4g", v);
+  if (v != 0.0 && (a >= 1e4 || a < 1e-3))
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+  else
+    std::snprintf(buf, sizeof buf, "%.4g", v);
   return buf;
 }
 

@@ -60,12 +60,18 @@ Rgb from_hsv(double h, double s, double v) {
   const double hp = h * 6.0;
   const double x = c * (1.0 - std::abs(std::fmod(hp, 2.0) - 1.0));
   Rgb out;
-  if (hp < 1) out = {c, x, 0};
-  else if (hp < 2) out = {x, c, 0};
-  else if (hp < 3) out = {0, c, x};
-  else if (hp < 4) out = {0, x, c};
-  else if (hp < 5) out = {x, 0, c};
-  else out = {c, 0, x};
+  if (hp < 1)
+    out = {c, x, 0};
+  else if (hp < 2)
+    out = {x, c, 0};
+  else if (hp < 3)
+    out = {0, c, x};
+  else if (hp < 4)
+    out = {0, x, c};
+  else if (hp < 5)
+    out = {x, 0, c};
+  else
+    out = {c, 0, x};
   const double m = v - c;
   return {out.r + m, out.g + m, out.b + m};
 }

@@ -10,7 +10,8 @@ std::vector<Vec2> world_polygon(std::span<const Vec2> body, const Vec2& position
   const double c = std::cos(angle), s = std::sin(angle);
   std::vector<Vec2> out;
   out.reserve(body.size());
-  for (const auto& v : body) out.emplace_back(position.x() + c * v.x() - s * v.y(), position.y() + s * v.x() + c * v.y());
+  for (const auto& v : body)
+    out.emplace_back(position.x() + c * v.x() - s * v.y(), position.y() + s * v.x() + c * v.y());
   return out;
 }
 

@@ -38,11 +38,11 @@ struct LegendEntry {
 struct Figure {
   std::vector<FilledPolygon> polygons;
   std::vector<Dot> dots;
-  double dot_radius = 0.0;       // m
+  double dot_radius = 0.0;        // m
   std::vector<Segment> segments;  // drawn over the polygons and dots
-  std::vector<Vec2> markers;     // broken links: small crosses, drawn last
+  std::vector<Vec2> markers;      // broken links: small crosses, drawn last
   Rgb marker_colour{0.0, 0.0, 0.0};
-  double link_length = 0.0;      // m, a typical beam or bond length: sets line widths and marker sizes
+  double link_length = 0.0;              // m, a typical beam or bond length: sets line widths and marker sizes
   std::vector<ColourScale> colour_bars;  // drawn right of the plot, in this order
   std::vector<LegendEntry> legend;       // swatches under the colour bars
   std::string legend_title;

@@ -32,7 +32,8 @@ std::string numbered_name(const std::string& pattern, long long number) {
     k = j;
   }
   if (fields != 1)
-    throw UsageError("--output: '" + pattern + "': a frame sequence needs one frame-number pattern, e.g. picture-%04d.png");
+    throw UsageError("--output: '" + pattern +
+                     "': a frame sequence needs one frame-number pattern, e.g. picture-%04d.png");
   return out;
 }
 
@@ -48,7 +49,8 @@ void write_picture_sequence(const RunPicture& picture, const std::vector<long lo
                             const std::vector<FileRole>& inputs) {
   for (std::size_t s = 0; s < frames.size(); ++s) {
     check_file_roles(inputs, {{"-o", numbered_name(pattern, static_cast<long long>(s))}});
-    write_figure(picture.figure(frames[s]), size, format, numbered_name(pattern, static_cast<long long>(s)), provenance);
+    write_figure(picture.figure(frames[s]), size, format, numbered_name(pattern, static_cast<long long>(s)),
+                 provenance);
   }
 }
 

@@ -17,9 +17,9 @@ namespace frac::render {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr Rgb kPlainFill{0.76, 0.81, 0.88};   // cells and nodes without a field
-constexpr Rgb kPlainLink{0.40, 0.40, 0.40};   // links of a mesh (no strain)
-constexpr Rgb kBrokenMark{0.55, 0.0, 0.05};   // broken-link crosses in "broken" mode
+constexpr Rgb kPlainFill{0.76, 0.81, 0.88};  // cells and nodes without a field
+constexpr Rgb kPlainLink{0.40, 0.40, 0.40};  // links of a mesh (no strain)
+constexpr Rgb kBrokenMark{0.55, 0.0, 0.05};  // broken-link crosses in "broken" mode
 
 std::string sci(double v, int digits = 3) {
   char buf[40];
@@ -93,8 +93,10 @@ ColourField find_colour_field(const io::Group& root, const std::string& colour, 
   ColourField field;
   const std::string body_group = cells ? "particles/cells" : "particles/nodes";
   std::vector<std::string> candidates;
-  if (colour.front() == '/') candidates.push_back(colour.substr(1));
-  else candidates = {body_group + "/" + colour, colour};
+  if (colour.front() == '/')
+    candidates.push_back(colour.substr(1));
+  else
+    candidates = {body_group + "/" + colour, colour};
   for (const auto& c : candidates) {
     if (!root.has(c)) continue;
     field.path = c;
@@ -152,9 +154,9 @@ std::vector<Rgb> fragment_fill(const FragmentLabels& l, std::size_t n, Figure& f
   std::size_t shown = 0;
   for (std::size_t f = 0; f < l.mass.size() && shown < 12; ++f) {
     if (l.cell_count[f] <= 1) continue;
-    fig.legend.push_back({category(static_cast<std::int64_t>(f)),
-                          "#" + std::to_string(f) + "  " + sci(l.mass[f]) + " kg, " + std::to_string(l.cell_count[f]) +
-                              " cells"});
+    fig.legend.push_back(
+        {category(static_cast<std::int64_t>(f)),
+         "#" + std::to_string(f) + "  " + sci(l.mass[f]) + " kg, " + std::to_string(l.cell_count[f]) + " cells"});
     ++shown;
   }
   std::size_t singles = 0;
@@ -202,8 +204,10 @@ std::size_t add_links(Figure& fig, const std::vector<std::array<std::int64_t, 2>
   if (colour_links) {
     const bool same = threshold && !fig.colour_bars.empty() && fig.colour_bars.back().palette == Palette::coolwarm &&
                       fig.colour_bars.back().min == scale.min && fig.colour_bars.back().max == scale.max;
-    if (same) fig.colour_bars.back().label = "strain / threshold (" + threshold->label + ")";
-    else fig.colour_bars.push_back(scale);
+    if (same)
+      fig.colour_bars.back().label = "strain / threshold (" + threshold->label + ")";
+    else
+      fig.colour_bars.push_back(scale);
   }
   fig.marker_colour = style.mode == LinkMode::broken ? kBrokenMark : Rgb{0.05, 0.05, 0.05};
   return broken;
@@ -401,15 +405,14 @@ std::vector<double> RunPicture::body_values(const FrameData& d) const {
         if (std::abs(field_info_.time[k] - d.time) < std::abs(field_info_.time[best] - d.time)) best = k;
       const auto slash = field_path_.rfind('/');
       const auto k = static_cast<long long>(best);
-      raw = slash == std::string::npos
-                ? io::read_series_frame<double>(root_, field_path_, k)
-                : io::read_series_frame<double>(root_.group(field_path_.substr(0, slash)), field_path_.substr(slash + 1), k);
+      raw = slash == std::string::npos ? io::read_series_frame<double>(root_, field_path_, k)
+                                       : io::read_series_frame<double>(root_.group(field_path_.substr(0, slash)),
+                                                                       field_path_.substr(slash + 1), k);
     } else {
       raw = field_static_;
     }
     v.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      v[i] = field_components_ == 2 ? std::hypot(raw[2 * i], raw[2 * i + 1]) : raw[i];
+    for (std::size_t i = 0; i < n; ++i) v[i] = field_components_ == 2 ? std::hypot(raw[2 * i], raw[2 * i + 1]) : raw[i];
   }
   return v;
 }
@@ -486,7 +489,8 @@ Figure RunPicture::figure(long long frame) const try {
     std::string name = opt_.name.empty() ? std::filesystem::path(root_.file()).filename().string() : opt_.name;
     std::string t = name;
     if (run_) {
-      t += "   frame " + std::to_string(d.index) + "/" + std::to_string(frames() - 1) + "   t = " + sci(d.time, 4) + " s";
+      t += "   frame " + std::to_string(d.index) + "/" + std::to_string(frames() - 1) + "   t = " + sci(d.time, 4) +
+           " s";
     } else {
       t += "   mesh: " + std::to_string(n) + (cells_ ? " cells, " : " nodes, ") + std::to_string(links_.size()) +
            (cells_ ? " beams" : " bonds");

@@ -28,9 +28,9 @@ struct PictureOptions {
   // (or a 2-vector, drawn as its length) per body: "particles/cells/angle", "/particles/cells/area",
   // "angular_velocity" (looked up under the bodies' group first). "" picks the file's default.
   std::string colour;
-  std::string links;                               // "strain" | "broken" | "off"; "" = strain
-  std::optional<std::array<double, 2>> range;      // colour range of the bodies' field (fixes auto ranges)
-  std::optional<std::array<double, 4>> view;       // m: xmin, ymin, xmax, ymax
+  std::string links;                           // "strain" | "broken" | "off"; "" = strain
+  std::optional<std::array<double, 2>> range;  // colour range of the bodies' field (fixes auto ranges)
+  std::optional<std::array<double, 4>> view;   // m: xmin, ymin, xmax, ymax
   bool axes = false;
   bool title = true;
   std::string name;  // how the title names the file ("" = its path)
@@ -102,8 +102,8 @@ class RunPicture {
   int field_components_ = 1;
   std::vector<double> field_static_;
   io::SeriesInfo field_info_;
-  std::optional<std::array<double, 2>> fixed_range_;   // from options or fix_across
-  std::optional<double> fixed_link_max_;               // link strain range without a threshold
+  std::optional<std::array<double, 2>> fixed_range_;  // from options or fix_across
+  std::optional<double> fixed_link_max_;              // link strain range without a threshold
 };
 
 }  // namespace frac::render

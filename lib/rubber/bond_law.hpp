@@ -30,11 +30,11 @@ struct VD {
 };
 
 struct LawParams {
-  double spacing = 1;       // Δ (m)
+  double spacing = 1;             // Δ (m)
   double A = 1, B = 1.5 * 9 / 8;  // J m^-2 and J m^-4: A = m a/Δ², B = 9 m a b/(8Δ⁴) (mooney_rivlin.hpp)
-  double short_width = 0.1;  // u_s (m): width of branch 1 of f (short, repulsive bonds)
-  double cutoff = 4;         // u_c (m): separation at which a bond fails
-  double cutoff_width = 0.1;  // u_s,h (m): width of the Fermi cut-off h (a separate parameter, §3)
+  double short_width = 0.1;       // u_s (m): width of branch 1 of f (short, repulsive bonds)
+  double cutoff = 4;              // u_c (m): separation at which a bond fails
+  double cutoff_width = 0.1;      // u_s,h (m): width of the Fermi cut-off h (a separate parameter, §3)
 };
 
 // ------------------------------------------------------------------------------------------ f(u)
@@ -46,8 +46,13 @@ struct LawParams {
 struct PairMarder {
   static constexpr std::string_view name = "marder";
   explicit PairMarder(const LawParams& p)
-      : a6(p.A / 6), b9(p.B / 9), d(p.spacing), d2(p.spacing * p.spacing), knee(p.spacing + p.short_width),
-        inv_us(1 / p.short_width), k0(2.0 / 3.0 * p.B * d2 * d2) {}
+      : a6(p.A / 6),
+        b9(p.B / 9),
+        d(p.spacing),
+        d2(p.spacing * p.spacing),
+        knee(p.spacing + p.short_width),
+        inv_us(1 / p.short_width),
+        k0(2.0 / 3.0 * p.B * d2 * d2) {}
   VD operator()(double u, double uc) const {
     if (u >= uc) return {below(uc).v, 0.0};
     return below(u);
@@ -66,8 +71,13 @@ struct PairMarder {
 struct PairMarderC1 {
   static constexpr std::string_view name = "marder-c1";
   explicit PairMarderC1(const LawParams& p)
-      : a6(p.A / 6), b9(p.B / 9), d(p.spacing), d2(p.spacing * p.spacing), knee(p.spacing + p.short_width),
-        c2(1 + 4 * p.spacing / p.short_width), c3(2 * p.spacing / (p.short_width * p.short_width)),
+      : a6(p.A / 6),
+        b9(p.B / 9),
+        d(p.spacing),
+        d2(p.spacing * p.spacing),
+        knee(p.spacing + p.short_width),
+        c2(1 + 4 * p.spacing / p.short_width),
+        c3(2 * p.spacing / (p.short_width * p.short_width)),
         k0(2.0 / 3.0 * p.B * d2 * d2) {}
   VD operator()(double u, double uc) const {
     if (u >= uc) return {below(uc).v, 0.0};
@@ -158,7 +168,8 @@ struct AngleMarder {
   static constexpr std::string_view name = "marder";
   static constexpr bool quadratic = true;
   explicit AngleMarder(const LawParams& p)
-      : c2(-p.B / 27), c1(-4 * p.B * p.spacing * p.spacing / 27),
+      : c2(-p.B / 27),
+        c1(-4 * p.B * p.spacing * p.spacing / 27),
         c0(-4 * p.B * p.spacing * p.spacing * p.spacing * p.spacing / 27) {}
   VD operator()(double X) const { return {(c2 * X + c1) * X + c0, 2 * c2 * X + c1}; }
   double c2, c1, c0;

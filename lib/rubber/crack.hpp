@@ -27,10 +27,10 @@ class CrackPath {
 
   struct Tip {
     bool found = false;
-    std::size_t bond = 0;      // forward bond id of the tip bond
-    double reference_x = 0;    // m, where it crosses the path in the reference lattice
-    double lab_x = 0;          // m, current x of the crossing (mean of its nodes)
-    std::size_t broken = 0;    // broken crossing bonds
+    std::size_t bond = 0;    // forward bond id of the tip bond
+    double reference_x = 0;  // m, where it crosses the path in the reference lattice
+    double lab_x = 0;        // m, current x of the crossing (mean of its nodes)
+    std::size_t broken = 0;  // broken crossing bonds
   };
   Tip tip(const Model& model, std::span<const double> q) const;
 

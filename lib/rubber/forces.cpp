@@ -5,7 +5,6 @@
 #include <type_traits>
 #include <variant>
 
-
 namespace frac::rubber {
 namespace {
 
@@ -85,8 +84,7 @@ inline double centre_moments(const G& g, const Slots& s, double* D, const double
     P4 += q * r2;
   }
   const double c2 = g.c2, c1 = g.c1, c0 = g.c0;
-  double T =
-      c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
+  double T = c2 * (Mxx * Mxx + 2 * Mxy * Mxy + Myy * Myy - P4) + c1 * (Sx * Sx + Sy * Sy - P2) + c0 * (H1 * H1 - H2);
   double dres[6] = {0, 0, 0, 0, 0, 0};
   if (res) [[unlikely]]
     T += residual_part(res, s, dres);
@@ -169,8 +167,10 @@ inline double centre_pairs(const G& g, const Slots& s, double* D, const double* 
 
 template <bool Energy, class Wt, class G>
 inline double centre(const G& g, const Slots& s, double* D, const double* res) {
-  if constexpr (G::quadratic) return centre_moments<Energy, Wt>(g, s, D, res);
-  else return centre_pairs<Energy, Wt>(g, s, D, res);
+  if constexpr (G::quadratic)
+    return centre_moments<Energy, Wt>(g, s, D, res);
+  else
+    return centre_pairs<Energy, Wt>(g, s, D, res);
 }
 
 // Energy-neutral failure at node i: a slot whose bond failed in this evaluation (kFreezing) leaves the

@@ -50,27 +50,27 @@ inline constexpr std::uint8_t kFreezing = 3;
 // Everything the passes read and write. Owned by the model; the pointers stay valid for its life.
 struct ForceContext {
   std::size_t n = 0;
-  const std::int32_t* nbr = nullptr;     // [6(n+1)]
-  std::uint8_t* status = nullptr;        // [3(n+1)]
-  std::uint8_t* past_cutoff = nullptr;   // [3(n+1)] 0 never beyond u_c, 1 beyond (event not yet recorded), 2 recorded
-  const double* cutoff = nullptr;        // [3(n+1)] u_c per bond
-  const double* shift = nullptr;         // [6(n+1)] lab image shifts, or nullptr without periodic bonds
-  BondData* bond = nullptr;              // [3(n+1)]
-  double* D = nullptr;                   // [12(n+1)] D(i,s) as (x, y)
+  const std::int32_t* nbr = nullptr;    // [6(n+1)]
+  std::uint8_t* status = nullptr;       // [3(n+1)]
+  std::uint8_t* past_cutoff = nullptr;  // [3(n+1)] 0 never beyond u_c, 1 beyond (event not yet recorded), 2 recorded
+  const double* cutoff = nullptr;       // [3(n+1)] u_c per bond
+  const double* shift = nullptr;        // [6(n+1)] lab image shifts, or nullptr without periodic bonds
+  BondData* bond = nullptr;             // [3(n+1)]
+  double* D = nullptr;                  // [12(n+1)] D(i,s) as (x, y)
 
   // The three-body residual (three_body_residual.hpp): c_st, 6 × 6, or nullptr (the paper's law).
   const double* residual = nullptr;
 
   // Dynamics: events and irreversible breaking happen only when `track` is set.
   bool track = false;
-  double break_extra = 0;   // irreversible breaking when u > u_c + break_extra; +inf: never (reversible law)
+  double break_extra = 0;  // irreversible breaking when u > u_c + break_extra; +inf: never (reversible law)
   // Energy-neutral failure: a bond breaks when it first passes u_c (break_extra is not used), and the
   // three-body terms that contain it are frozen into the constant energy of their node, frozen[i].
   bool freeze = false;
-  double* frozen = nullptr;  // [n] J, with freeze
+  double* frozen = nullptr;                           // [n] J, with freeze
   const double *x_prev = nullptr, *y_prev = nullptr;  // with freeze: positions at the previous step, or nullptr
-  double beta = 0;          // Kelvin coefficient β (kg/s)
-  double damping_onset = 0; // near_failure: damping ramps from 0 at this length (m) to β at u_c
+  double beta = 0;                                    // Kelvin coefficient β (kg/s)
+  double damping_onset = 0;  // near_failure: damping ramps from 0 at this length (m) to β at u_c
 
   const double *x = nullptr, *y = nullptr, *vx = nullptr, *vy = nullptr;
   double *ax = nullptr, *ay = nullptr;

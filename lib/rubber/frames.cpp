@@ -17,16 +17,40 @@ const std::vector<FrameRow>& frame_table() {
   using In = const dynamics::Integrator&;
   const std::string nodes = "particles/nodes", bonds = "connectivity/bonds/trajectory";
   static const std::vector<FrameRow> table{
-      {"position", nodes, "m", false, 2, false,
-       [](const Model& m, In in, std::span<double> out) { pairs(in.q(), m.nodes(), out); }, {}},
-      {"velocity", nodes, "m s-1", false, 2, false,
-       [](const Model& m, In in, std::span<double> out) { pairs(in.v(), m.nodes(), out); }, {}},
-      {"intact", bonds, "", true, 1, true, {},
+      {"position",
+       nodes,
+       "m",
+       false,
+       2,
+       false,
+       [](const Model& m, In in, std::span<double> out) { pairs(in.q(), m.nodes(), out); },
+       {}},
+      {"velocity",
+       nodes,
+       "m s-1",
+       false,
+       2,
+       false,
+       [](const Model& m, In in, std::span<double> out) { pairs(in.v(), m.nodes(), out); },
+       {}},
+      {"intact",
+       bonds,
+       "",
+       true,
+       1,
+       true,
+       {},
        [](const Model& m, In in, std::span<std::uint8_t> out) {
          const Lattice& L = m.lattice();
-         for (std::size_t k = 0; k < out.size(); ++k) out[k] = m.holds(static_cast<std::size_t>(L.bond_id[k]), in.q()) ? 1 : 0;
+         for (std::size_t k = 0; k < out.size(); ++k)
+           out[k] = m.holds(static_cast<std::size_t>(L.bond_id[k]), in.q()) ? 1 : 0;
        }},
-      {"strain", bonds, "1", true, 1, false,
+      {"strain",
+       bonds,
+       "1",
+       true,
+       1,
+       false,
        [](const Model& m, In in, std::span<double> out) {
          const Lattice& L = m.lattice();
          for (std::size_t k = 0; k < out.size(); ++k)
@@ -36,6 +60,5 @@ const std::vector<FrameRow>& frame_table() {
   };
   return table;
 }
-
 
 }  // namespace frac::rubber

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "dynamics/integrator.hpp"
-#include "run/frame_rows.hpp"
 #include "rubber/model.hpp"
+#include "run/frame_rows.hpp"
 
 namespace frac::rubber {
 

@@ -59,7 +59,6 @@ void add_mesh_bonds(Lattice& L, const mesh::NodeMesh& m) {
     L.nbr[6 * static_cast<std::size_t>(owner) + static_cast<std::size_t>(fs)] = static_cast<std::int32_t>(other);
     L.nbr[6 * static_cast<std::size_t>(other) + static_cast<std::size_t>(fs + 3)] = static_cast<std::int32_t>(owner);
   }
-
 }
 
 // The periodic box and the parity of the periods it needs.
@@ -71,13 +70,17 @@ void set_periodic_box(Lattice& L, const mesh::NodeMesh& m, bool periodic_x, bool
   const double h = d * std::sqrt(3.0) / 2;
   // Periods and the parity they must respect.
   if (L.rows_along_x) {
-    if (periodic_x && nx < 3) throw UsageError("periodic in x needs at least 3 nodes per row, got " + std::to_string(nx));
-    if (periodic_y && (ny < 4 || ny % 2)) throw UsageError("periodic in y needs an even number (>= 4) of rows, got " + std::to_string(ny));
+    if (periodic_x && nx < 3)
+      throw UsageError("periodic in x needs at least 3 nodes per row, got " + std::to_string(nx));
+    if (periodic_y && (ny < 4 || ny % 2))
+      throw UsageError("periodic in y needs an even number (>= 4) of rows, got " + std::to_string(ny));
     L.box_x = periodic_x ? static_cast<double>(nx) * d : 0;
     L.box_y = periodic_y ? static_cast<double>(ny) * h : 0;
   } else {
-    if (periodic_x && (nx < 4 || nx % 2)) throw UsageError("periodic in x needs an even number (>= 4) of columns, got " + std::to_string(nx));
-    if (periodic_y && ny < 3) throw UsageError("periodic in y needs at least 3 nodes per column, got " + std::to_string(ny));
+    if (periodic_x && (nx < 4 || nx % 2))
+      throw UsageError("periodic in x needs an even number (>= 4) of columns, got " + std::to_string(nx));
+    if (periodic_y && ny < 3)
+      throw UsageError("periodic in y needs at least 3 nodes per column, got " + std::to_string(ny));
     L.box_x = periodic_x ? static_cast<double>(nx) * h : 0;
     L.box_y = periodic_y ? static_cast<double>(ny) * d : 0;
   }
@@ -90,11 +93,13 @@ void check_periodic_layout(const Lattice& L, const mesh::NodeMesh& m) {
   for (std::int64_t j = 0; j < ny; ++j)
     for (std::int64_t i = 0; i < nx; ++i) {
       const auto k = static_cast<std::size_t>(j * nx + i);
-      const double ex = L.rows_along_x ? static_cast<double>(i) * d + ((j & 1) ? d / 2 : 0) : static_cast<double>(i) * h;
-      const double ey = L.rows_along_x ? static_cast<double>(j) * h : static_cast<double>(j) * d + ((i & 1) ? d / 2 : 0);
+      const double ex =
+          L.rows_along_x ? static_cast<double>(i) * d + ((j & 1) ? d / 2 : 0) : static_cast<double>(i) * h;
+      const double ey =
+          L.rows_along_x ? static_cast<double>(j) * h : static_cast<double>(j) * d + ((i & 1) ? d / 2 : 0);
       if (std::abs(L.rx[k] - ex - L.rx[0]) > 1e-6 * d || std::abs(L.ry[k] - ey - L.ry[0]) > 1e-6 * d)
-        throw InputError("periodic boundaries need the node layout of mesh-gen triangular; " + node_name(static_cast<std::int64_t>(k)) +
-                         " is out of place");
+        throw InputError("periodic boundaries need the node layout of mesh-gen triangular; " +
+                         node_name(static_cast<std::int64_t>(k)) + " is out of place");
     }
 }
 

@@ -26,15 +26,15 @@ struct Lattice {
   std::int64_t nx = 0, ny = 0;
   bool rows_along_x = true;
   bool periodic_x = false, periodic_y = false;
-  double box_x = 0, box_y = 0;        // m: reference periods (0 when not periodic)
+  double box_x = 0, box_y = 0;  // m: reference periods (0 when not periodic)
 
-  std::vector<double> rx, ry;            // [n] reference positions (m)
-  std::vector<std::int32_t> nbr;         // [6(n+1)] neighbour in slot s, or n
-  std::vector<std::uint8_t> exists;      // [3(n+1)] forward bond exists (mesh or wrap bond)
-  std::vector<std::uint8_t> intact;      // [3(n+1)] exists and not cut in the mesh
-  std::vector<std::int64_t> mesh_bond;   // [3(n+1)] index in the mesh's bond list; -1 for wrap or none
-  std::vector<std::int64_t> bond_id;     // [mesh bonds] forward bond id 3i + s of mesh bond k
-  std::vector<double> shift;             // [2·3(n+1)] reference image shift of a wrap bond (else 0)
+  std::vector<double> rx, ry;           // [n] reference positions (m)
+  std::vector<std::int32_t> nbr;        // [6(n+1)] neighbour in slot s, or n
+  std::vector<std::uint8_t> exists;     // [3(n+1)] forward bond exists (mesh or wrap bond)
+  std::vector<std::uint8_t> intact;     // [3(n+1)] exists and not cut in the mesh
+  std::vector<std::int64_t> mesh_bond;  // [3(n+1)] index in the mesh's bond list; -1 for wrap or none
+  std::vector<std::int64_t> bond_id;    // [mesh bonds] forward bond id 3i + s of mesh bond k
+  std::vector<double> shift;            // [2·3(n+1)] reference image shift of a wrap bond (else 0)
 
   std::size_t bonds() const { return 3 * (n + 1); }  // forward bond slots, sentinel included
   std::int32_t neighbour(std::size_t i, int s) const { return nbr[6 * i + static_cast<std::size_t>(s)]; }

@@ -15,8 +15,7 @@ std::pair<std::size_t, std::size_t> worker_range(std::size_t n, std::size_t work
 }
 }  // namespace
 
-Model::Model(Lattice lattice, ModelOptions options)
-    : lattice_(std::move(lattice)), options_(std::move(options)) {
+Model::Model(Lattice lattice, ModelOptions options) : lattice_(std::move(lattice)), options_(std::move(options)) {
   const int threads = std::min(options_.threads <= 0 ? 0 : options_.threads, ForceContext::kMaxWorkers);
   threads_ = std::min(threads > 0 ? threads : static_cast<int>(processor_count()), ForceContext::kMaxWorkers);
   passes_ = select_passes(options_.law, options_.damping);
@@ -81,7 +80,8 @@ std::pair<std::size_t, std::size_t> Model::rows_of(std::size_t worker, std::size
 }
 
 Phase Model::bonds_phase() {
-  return {"lattice: bonds", false,
+  return {"lattice: bonds",
+          false,
           [this](std::size_t t, std::size_t nt) {
             const auto [i0, i1] = worker_range(lattice_.n, t, nt);
             passes_->bonds(ctx_, i0, i1, static_cast<int>(t));
@@ -90,7 +90,8 @@ Phase Model::bonds_phase() {
 }
 
 Phase Model::centres_phase() {
-  return {"lattice: centres", false,
+  return {"lattice: centres",
+          false,
           [this](std::size_t t, std::size_t nt) {
             const auto [i0, i1] = worker_range(lattice_.n, t, nt);
             passes_->centres(ctx_, i0, i1);
@@ -107,13 +108,15 @@ Phase Model::centres_phase() {
 void Model::make_phases() {
   const std::size_t L = row_len_;
   if (fused_) {
-    evaluation_.add({"lattice: edge bonds", false,
+    evaluation_.add({"lattice: edge bonds",
+                     false,
                      [this, L](std::size_t t, std::size_t nt) {
                        const auto [r0, r1] = rows_of(t, nt);
                        if (r1 > r0) passes_->bonds(ctx_, (r1 - 1) * L, r1 * L, static_cast<int>(t));
                      },
                      {}});
-    evaluation_.add({"lattice: rows", false,
+    evaluation_.add({"lattice: rows",
+                     false,
                      [this, L](std::size_t t, std::size_t nt) {
                        const auto [r0, r1] = rows_of(t, nt);
                        for (std::size_t r = r0; r < r1; ++r) {
@@ -123,7 +126,8 @@ void Model::make_phases() {
                        }
                      },
                      {}});
-    evaluation_.add({"lattice: edge gathers", false,
+    evaluation_.add({"lattice: edge gathers",
+                     false,
                      [this, L](std::size_t t, std::size_t nt) {
                        const auto [r0, r1] = rows_of(t, nt);
                        if (r1 == r0) return;
@@ -134,7 +138,8 @@ void Model::make_phases() {
   } else {
     evaluation_.add(bonds_phase());
     evaluation_.add(centres_phase());
-    evaluation_.add({"lattice: gather", false,
+    evaluation_.add({"lattice: gather",
+                     false,
                      [this](std::size_t t, std::size_t nt) {
                        const auto [i0, i1] = worker_range(lattice_.n, t, nt);
                        passes_->gather(ctx_, i0, i1, static_cast<int>(t));
@@ -144,7 +149,8 @@ void Model::make_phases() {
   accelerations_.add(evaluation_);
   // Where the next step starts from: failures in it are frozen where they happened.
   if (ctx_.freeze)
-    accelerations_.add({"lattice: previous positions", false,
+    accelerations_.add({"lattice: previous positions",
+                        false,
                         [this](std::size_t t, std::size_t nt) {
                           const auto [i0, i1] = worker_range(lattice_.n, t, nt);
                           const std::size_t n = lattice_.n;
@@ -154,7 +160,8 @@ void Model::make_phases() {
                         {}});
   const auto blocks_of = [this](std::size_t t, std::size_t nt) { return worker_range(blocks_.size() / 4, t, nt); };
   energy_.add(bonds_phase());
-  energy_.add({"lattice: energy", false,
+  energy_.add({"lattice: energy",
+               false,
                [this, blocks_of](std::size_t t, std::size_t nt) {
                  const auto [k0, k1] = blocks_of(t, nt);
                  passes_->energy(ctx_, k0, k1);
@@ -162,7 +169,8 @@ void Model::make_phases() {
                {}});
   virial_.add(bonds_phase());
   virial_.add(centres_phase());
-  virial_.add({"lattice: virial", false,
+  virial_.add({"lattice: virial",
+               false,
                [this, blocks_of](std::size_t t, std::size_t nt) {
                  const auto [k0, k1] = blocks_of(t, nt);
                  virial_blocks(ctx_, k0, k1);

@@ -70,8 +70,8 @@ class Model final : public dynamics::System {
   void set_box(const Eigen::Matrix2d& F);
 
   // Bond state, by forward bond id (Lattice).
-  void remove_bond(std::size_t b);                 // cut on purpose: no energy, no force
-  void set_cutoff(std::size_t b, double cutoff);   // u_c of one bond (toughening)
+  void remove_bond(std::size_t b);                // cut on purpose: no energy, no force
+  void set_cutoff(std::size_t b, double cutoff);  // u_c of one bond (toughening)
   double cutoff(std::size_t b) const { return cutoff_[b]; }
   std::uint8_t status(std::size_t b) const { return status_[b]; }
   // Bond intact now: exists, not removed or broken, and shorter than its u_c (h > 1/2) at q.

@@ -32,9 +32,9 @@ Patch make_patch(const BondLaw& law, double node_mass, std::int64_t nx, std::int
 double mode_omega2(Patch& patch, const Eigen::Vector2d& k_ref, const Eigen::Vector2d& U);
 
 struct LatticeSpeeds {
-  double transverse = 0, longitudinal = 0;  // m/s, lab frame; NaN when ω² < 0 (the mode is unstable)
+  double transverse = 0, longitudinal = 0;                // m/s, lab frame; NaN when ω² < 0 (the mode is unstable)
   double transverse_omega2 = 0, longitudinal_omega2 = 0;  // ω² at the longest wavelength (k = 2π/L)
-  double wavelength = 0;  // m: reference length of the longest wave probed
+  double wavelength = 0;                                  // m: reference length of the longest wave probed
 };
 // Long-wave lab speeds along 'x' or 'y' at F = diag(lx, ly), from waves of reference length L and L/2
 // (L = `wavelengths` lattice spacings, default 128), extrapolated to k → 0.

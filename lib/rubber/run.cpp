@@ -100,8 +100,8 @@ std::vector<std::size_t> clamped_nodes(const mesh::NodeMesh& mesh, const RubberS
 }
 
 // Thermal noise: uniform velocities in [−noise, noise] with zero mean over the free nodes.
-void add_thermal_noise(std::vector<double>& v0, std::span<const std::size_t> clamped, std::size_t n,
-                       std::uint64_t seed, double noise) {
+void add_thermal_noise(std::vector<double>& v0, std::span<const std::size_t> clamped, std::size_t n, std::uint64_t seed,
+                       double noise) {
   Rng rng(seed);
   std::vector<std::uint8_t> fixed(n, 0);
   for (std::size_t i : clamped) fixed[i] = 1;
@@ -150,8 +150,10 @@ RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& su, std
   if (sc.pulse_amplitude > 0) add_pulse(sys.q0, L, sc);
   const std::vector<std::size_t> clamped = clamped_nodes(mesh, sc, n);
   if (!clamped.empty()) {
-    if (sc.ramp_time > 0) model.clamp(clamped, sys.q0, sys.v0, sc.ramp_time);
-    else model.clamp(clamped, sys.q0);
+    if (sc.ramp_time > 0)
+      model.clamp(clamped, sys.q0, sys.v0, sc.ramp_time);
+    else
+      model.clamp(clamped, sys.q0);
   }
   if (sc.noise > 0) add_thermal_noise(sys.v0, clamped, n, seed, sc.noise);
   if (sc.tip_kick > 0) kick_tip(sys, sc.tip_kick);
@@ -199,8 +201,12 @@ std::size_t speed_window(const RubberScene& sc, double dt) {
 }  // namespace
 
 RubberRun::RubberRun(RubberSystem& system, const RubberSetup& setup, const mesh::NodeMesh& mesh)
-    : sys_(system), setup_(setup), mesh_(mesh), model_(*system.model),
-      integ_(dynamics::make_integrator(setup.scene.integrator)), fit_(speed_window(setup.scene, setup.dt)),
+    : sys_(system),
+      setup_(setup),
+      mesh_(mesh),
+      model_(*system.model),
+      integ_(dynamics::make_integrator(setup.scene.integrator)),
+      fit_(speed_window(setup.scene, setup.dt)),
       next_frame_(setup.scene.frame_interval > 0 ? setup.scene.frame_interval : 1e300),
       state_(model_.lattice().n) {
   sum_.dt = setup.dt;
@@ -349,8 +355,8 @@ std::string RubberRun::progress_line(std::int64_t step, std::int64_t, double, do
   s << "t = " << integ_->t() << " s (" << std::lround(100 * integ_->t() / setup_.scene.t_max) << "%), step " << step;
   if (tip_.found)
     s << ", tip at x = " << tip_.lab_x << " m ("
-      << (tip_.reference_x - sum_.tip_start.reference_x) / model_.lattice().spacing << " spacings), v = "
-      << sum_.tip_speed << " m/s";
+      << (tip_.reference_x - sum_.tip_start.reference_x) / model_.lattice().spacing
+      << " spacings), v = " << sum_.tip_speed << " m/s";
   s << ", " << sum_.events << " bonds past u_c";
   return s.str();
 }

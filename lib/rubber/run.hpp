@@ -30,7 +30,7 @@ struct RubberSystem {
   std::unique_ptr<Model> model;
   std::unique_ptr<CrackPath> path;
   std::vector<double> q0, v0;
-  std::size_t seeded = 0;  // crossing bonds cut by crack.seed_length (besides the mesh's notch)
+  std::size_t seeded = 0;             // crossing bonds cut by crack.seed_length (besides the mesh's notch)
   std::unique_ptr<CrackDrive> drive;  // the driven seed (crack.drive_speed), null when off
 };
 RubberSystem build_rubber(const mesh::NodeMesh& mesh, const RubberSetup& setup, std::uint64_t seed, int threads);
@@ -39,21 +39,21 @@ struct RubberSummary {
   long long steps = 0;
   double time = 0, dt = 0;
   std::string stop_reason;
-  std::size_t events = 0;           // bonds that went past their cut-off (once each)
-  std::size_t irreversible = 0;     // bonds removed by irreversible breaking
-  std::size_t toughened = 0;        // bonds whose cut-off was raised
-  std::size_t driven = 0;           // bonds the knife of the driven seed removed
-  double drive_energy = 0;          // J, change of the potential energy by those cuts (the knife's work)
-  CrackPath::Tip tip_start, tip;    // crack tip at the start and at the end
-  double tip_speed = 0;             // m/s, last fitted speed of λx × reference tip x over output.speed_window
+  std::size_t events = 0;                   // bonds that went past their cut-off (once each)
+  std::size_t irreversible = 0;             // bonds removed by irreversible breaking
+  std::size_t toughened = 0;                // bonds whose cut-off was raised
+  std::size_t driven = 0;                   // bonds the knife of the driven seed removed
+  double drive_energy = 0;                  // J, change of the potential energy by those cuts (the knife's work)
+  CrackPath::Tip tip_start, tip;            // crack tip at the start and at the end
+  double tip_speed = 0;                     // m/s, last fitted speed of λx × reference tip x over output.speed_window
   double energy_start = 0, energy_end = 0;  // J, kinetic + potential
   // The energy when the clamped rows stop doing work (t = 0, or the first observation from loading.ramp_time
   // on), and the knife's work by then: undamped, energy_end - energy_conserved equals the knife's work since.
   bool energy_conserved_set = false;
   double energy_conserved = 0, energy_conserved_time = 0, drive_energy_conserved = 0;
   double wall_seconds = 0;
-  double loop_seconds = 0;          // wall time of the time loop alone (steps, events, observations)
-  long long loop_steps = 0;         // steps of that loop (fewer than `steps` in a run continued from a checkpoint)
+  double loop_seconds = 0;   // wall time of the time loop alone (steps, events, observations)
+  long long loop_steps = 0;  // steps of that loop (fewer than `steps` in a run continued from a checkpoint)
   double ns_per_node_step() const {
     return loop_steps > 0 && nodes > 0
                ? 1e9 * loop_seconds / (static_cast<double>(loop_steps) * static_cast<double>(nodes))
@@ -64,7 +64,6 @@ struct RubberSummary {
   double checkpoint_seconds = 0;  // wall time spent writing them
   std::vector<PhaseTime> phases;  // the time of each phase of the steps (core/phases)
 };
-
 
 // Least-squares slope of (t, x) over a ring buffer, in a fixed order: the crack tip's speed.
 struct SpeedFit {
@@ -102,8 +101,7 @@ class RubberRun final : public run::Engine {
   const std::vector<run::FrameDataset>& frame_datasets() const override { return frames_; }
   run::RunBodies bodies() const override;
   const StateRegistry& state() const override { return state_; }
-  std::string progress_line(std::int64_t step, std::int64_t first_step, double first_t,
-                            double elapsed) const override;
+  std::string progress_line(std::int64_t step, std::int64_t first_step, double first_t, double elapsed) const override;
 
   // The run's summary, from the driver's outcome.
   RubberSummary summary(const run::Outcome& outcome) const;

@@ -24,8 +24,8 @@ RubberSummary run_to_file(RubberSystem& system, const RubberSetup& setup, const 
                           const CheckpointOptions& checkpoint, Progress& progress) {
   for (auto& d : setup.derived()) run.parameters.push_back(std::move(d));
   RubberRun engine(system, setup, mesh);
-  const run::FileOutcome f = run::run_to_file(engine, "rubber-run", scene.source_text(), std::move(run), input,
-                                              output, checkpoint, progress);
+  const run::FileOutcome f =
+      run::run_to_file(engine, "rubber-run", scene.source_text(), std::move(run), input, output, checkpoint, progress);
   RubberSummary s = engine.summary(f.run);
   s.checkpoints = f.checkpoints;
   s.checkpoint_seconds = f.checkpoint_seconds;
@@ -42,8 +42,7 @@ std::string summary_line(const RubberSummary& s, const RubberSystem& system, con
     line << ", crack tip advanced " << (s.tip.reference_x - s.tip_start.reference_x) / mesh.spacing
          << " spacings (last speed " << s.tip_speed << " m/s; lattice c_T " << setup.lattice_x.transverse << ", c_L "
          << setup.lattice_x.longitudinal << " m/s along x)";
-  if (system.drive)
-    line << ", the driven seed cut " << s.driven << " bonds (knife's work " << s.drive_energy << " J)";
+  if (system.drive) line << ", the driven seed cut " << s.driven << " bonds (knife's work " << s.drive_energy << " J)";
   line << ", energy " << s.energy_start << " -> " << s.energy_end << " J, " << s.wall_seconds << " s wall ("
        << s.ns_per_node_step() << " ns per node-step on " << system.model->threads() << " thread"
        << (system.model->threads() > 1 ? "s" : "") << ")";

@@ -59,7 +59,8 @@ void read_material_and_law(Scene& s, RubberScene& r, double d) {
   r.three_body_weight = s.choice("law.three_body_weight", r.three_body_weight, three_body_weight_names());
   r.three_body_residual = s.non_negative("law.three_body_residual", 0.0);
   if (!(r.three_body_residual < 1))
-    throw UsageError(s.name() + ": law.three_body_residual must lie in [0, 1) (the fraction of the far-field three-body "
+    throw UsageError(s.name() +
+                     ": law.three_body_residual must lie in [0, 1) (the fraction of the far-field three-body "
                      "energy a failed pair keeps)");
   r.failure = s.choice("law.failure", r.failure, {"paper", "freeze"});
   r.short_width = s.in("law.short_width", 0.1 * d, law_length);
@@ -68,7 +69,6 @@ void read_material_and_law(Scene& s, RubberScene& r, double d) {
   if (!(r.cutoff_length > d + r.short_width))
     throw UsageError(s.name() + ": law.cutoff_length = " + num(r.cutoff_length) + " m must exceed the spacing plus " +
                      "law.short_width (" + num(d + r.short_width) + " m)");
-
 }
 
 // physics.* switches and the damping, breaking and toughening they switch on; tau: the time unit Δ/√a.
@@ -90,7 +90,6 @@ void read_physics(Scene& s, RubberScene& r, double d, double tau) {
     throw UsageError(s.name() + ": toughening.cutoff must exceed law.cutoff_length");
   r.toughening_every = s.integer("toughening.every", r.toughening_every);
   if (r.toughening_every <= 0) throw UsageError(s.name() + ": toughening.every must be positive");
-
 }
 
 // loading.*, boundary.* and crack.*: what is done to the sheet of the given length along x.
@@ -132,9 +131,9 @@ void read_loading(Scene& s, RubberScene& r, const mesh::NodeMesh& mesh, double l
   r.drive_speed = s.in("crack.drive_speed", 0.0, Interval::closed(0, kSpeed));
   r.drive_length = s.in("crack.drive_length", 0.0, Interval::closed(0, length));
   if ((r.drive_speed > 0) != (r.drive_length > 0))
-    throw UsageError(s.name() + ": crack.drive_speed and crack.drive_length go together (both positive: the driven "
+    throw UsageError(s.name() +
+                     ": crack.drive_speed and crack.drive_length go together (both positive: the driven "
                      "seed; both 0: off)");
-
 }
 
 // pulse.*, initial.*, integrator.*, stop.* and output.*.
@@ -202,8 +201,9 @@ std::vector<std::string> far_field_warnings(const RubberSetup& su) {
       w.push_back("the bonds at " + num(su.family_angle[f]) + " degrees are " + len(u, d) + " long " + at +
                   ", shorter than spacing + law.short_width = " + len(knee, d) +
                   ": the lattice is not Mooney-Rivlin there (short-bond branch of f; physics/rubber-lattice.md §4)" +
-                  (su.family_angle[0] == 0 ? "; a mesh with close-packed rows along y (mesh-gen triangular --rows-along y) may avoid it"
-                                            : "; a mesh with close-packed rows along x may avoid it"));
+                  (su.family_angle[0] == 0
+                       ? "; a mesh with close-packed rows along y (mesh-gen triangular --rows-along y) may avoid it"
+                       : "; a mesh with close-packed rows along x may avoid it"));
     }
   }
   if (sc.cutoff != "none") {
@@ -222,14 +222,16 @@ std::vector<std::string> far_field_warnings(const RubberSetup& su) {
             "; below 15 widths the cut-off stiffens the far field (rubber-lattice-validation.md §D.1): " + speeds +
             "; raise u_c to at least u_0 + 15 widths = " + len(u0 + 15 * sc.cutoff_width, d) + " or narrow the cut-off";
     } else if (sc.cutoff != "fermi" && deficit > 1e-12) {
-      msg = "the " + sc.cutoff + " cut-off reaches the far-field bonds: h(u_0) = " + num(1 - deficit, 6) + " at u_0 = " +
-            len(u0, d) + where + " (it acts from u_c - width = " + len(sc.cutoff_length - sc.cutoff_width, d) +
-            "), which changes the far field's stiffness: " + speeds + "; raise u_c to at least u_0 + width = " +
-            len(u0 + sc.cutoff_width, d);
+      msg = "the " + sc.cutoff + " cut-off reaches the far-field bonds: h(u_0) = " + num(1 - deficit, 6) +
+            " at u_0 = " + len(u0, d) + where +
+            " (it acts from u_c - width = " + len(sc.cutoff_length - sc.cutoff_width, d) +
+            "), which changes the far field's stiffness: " + speeds +
+            "; raise u_c to at least u_0 + width = " + len(u0 + sc.cutoff_width, d);
     }
     if (!msg.empty()) {
-      if (u0 >= sc.cutoff_length) msg = "the far-field bonds (" + len(u0, d) + ") are past the cut-off u_c = " +
-                                        len(sc.cutoff_length, d) + ": the pre-stretched sheet has no cohesion; " + msg;
+      if (u0 >= sc.cutoff_length)
+        msg = "the far-field bonds (" + len(u0, d) + ") are past the cut-off u_c = " + len(sc.cutoff_length, d) +
+              ": the pre-stretched sheet has no cohesion; " + msg;
       w.push_back(msg);
     }
   }
@@ -294,18 +296,21 @@ void append_failure_warnings(RubberSetup& su) {
                             " cut-off widths, where its three-body weight h is still " + num(h, 3) +
                             " (material.b = " + num(sc.b) +
                             "): the energy of its three-body terms goes at once and the total energy jumps; "
-                            "raise breaking.extra_widths until h there is below " + num(kBreakingWeightLimit));
+                            "raise breaking.extra_widths until h there is below " +
+                            num(kBreakingWeightLimit));
   }
   // Energy-neutral failure freezes the terms at u_c with the weight h(u_c) they still have; the share the
   // cut-off released on the way is a cohesive barrier all the same.
   if (sc.failure == "freeze" && sc.cutoff != "none" && sc.b != 0) {
-    const double h = std::visit([&](const auto& hc) { return hc(sc.cutoff_length, sc.cutoff_length).v; }, su.law.cutoff);
-    su.warnings.push_back("law.failure = freeze with the " + sc.cutoff + " cut-off: a bond fails at u_c, where h = " +
-                          num(h, 3) + ", so " + num(100 * (1 - h), 3) +
+    const double h =
+        std::visit([&](const auto& hc) { return hc(sc.cutoff_length, sc.cutoff_length).v; }, su.law.cutoff);
+    su.warnings.push_back("law.failure = freeze with the " + sc.cutoff +
+                          " cut-off: a bond fails at u_c, where h = " + num(h, 3) + ", so " + num(100 * (1 - h), 3) +
                           "% of its three-body share is released through h before it fails (a cohesive barrier), "
                           "not frozen; law.cutoff = none freezes all of it");
   }
-  if (sc.b >= 2) su.warnings.push_back("material.b = " + num(sc.b) + ": Mooney-Rivlin has no real shear waves for b >= 2");
+  if (sc.b >= 2)
+    su.warnings.push_back("material.b = " + num(sc.b) + ": Mooney-Rivlin has no real shear waves for b >= 2");
   if (sc.dt > su.dt_bound)
     su.warnings.push_back("integrator.dt = " + num(sc.dt) + " s is above the stability bound " + num(su.dt_bound) +
                           " s (allowed by integrator.allow_unstable)");

@@ -11,12 +11,12 @@
 
 #include <Eigen/Core>
 
+#include "continuum/mooney_rivlin.hpp"
 #include "core/scene.hpp"
 #include "dynamics/integrator.hpp"
 #include "mesh/node_mesh.hpp"
 #include "rubber/bond_law.hpp"
 #include "rubber/forces.hpp"
-#include "continuum/mooney_rivlin.hpp"
 #include "rubber/probe.hpp"
 
 namespace frac::rubber {
@@ -28,8 +28,8 @@ struct RubberScene {
   // [law]
   std::string pair = "marder", cutoff = "fermi", angle = "marder";
   std::string three_body_weight = "pair";  // pair | all_bonds (bond_law.hpp)
-  double three_body_residual = 0;  // κ in [0, 1): 0, the paper's law (three_body_residual.hpp)
-  std::string failure = "paper";   // paper | freeze: energy-neutral failure (model.hpp)
+  double three_body_residual = 0;          // κ in [0, 1): 0, the paper's law (three_body_residual.hpp)
+  std::string failure = "paper";           // paper | freeze: energy-neutral failure (model.hpp)
   double short_width = 0, cutoff_length = 0, cutoff_width = 0;  // m
   // [physics] and their parameters
   bool damping = false;
@@ -50,7 +50,7 @@ struct RubberScene {
   bool periodic_x = false, periodic_y = false;
   // [crack]
   double seed_length = 0, tip_kick = 0;  // m, m/s
-  double path_cutoff_ratio = 1;  // the bulk's cut-off over the crack path's (law.cutoff_length): a weak plane
+  double path_cutoff_ratio = 1;          // the bulk's cut-off over the crack path's (law.cutoff_length): a weak plane
   double drive_speed = 0, drive_length = 0;  // m/s (lab), m (reference): the driven seed (crack_drive.hpp); 0: off
   // [pulse]
   std::string pulse_kind = "longitudinal", pulse_direction = "x";
@@ -70,8 +70,8 @@ struct RubberScene {
   double frame_interval = 0;  // s; 0: only the first and last frames
   long long observe_every = 20;
   std::vector<std::string> frames;  // the datasets of every frame (rubber/frames' rows), position among them
-  double speed_window = 0;  // s
-  int threads = 1;          // not a scene key: --threads
+  double speed_window = 0;          // s
+  int threads = 1;                  // not a scene key: --threads
 };
 
 // Reads the scene for this mesh; UsageError naming the key for a bad value: out of its range, beyond
@@ -83,14 +83,14 @@ void require_run_keys(const Scene& scene);
 struct RubberSetup {
   RubberScene scene;
   BondLaw law;
-  double spacing = 0, node_mass = 0, rho = 0;  // m, kg, kg/m^2 (areal)
-  Eigen::Matrix2d F = Eigen::Matrix2d::Identity();  // far-field deformation
-  double family_length[3] = {0, 0, 0};              // m: bond lengths of the three families at F
-  double family_angle[3] = {0, 0, 0};               // degrees, reference
-  double omega_max = 0, dt_bound = 0, dt = 0;       // rad/s, s, s
+  double spacing = 0, node_mass = 0, rho = 0;                 // m, kg, kg/m^2 (areal)
+  Eigen::Matrix2d F = Eigen::Matrix2d::Identity();            // far-field deformation
+  double family_length[3] = {0, 0, 0};                        // m: bond lengths of the three families at F
+  double family_angle[3] = {0, 0, 0};                         // degrees, reference
+  double omega_max = 0, dt_bound = 0, dt = 0;                 // rad/s, s, s
   double omega_far = 0, omega_relaxed = 0, omega_cutoff = 0;  // rad/s: the three states probed
-  mr::Speeds mr_x, mr_y;                            // Mooney-Rivlin lab speeds along x and y at F
-  LatticeSpeeds lattice_x, lattice_y;               // the lattice's own at F, with this law
+  mr::Speeds mr_x, mr_y;                                      // Mooney-Rivlin lab speeds along x and y at F
+  LatticeSpeeds lattice_x, lattice_y;                         // the lattice's own at F, with this law
   std::vector<std::string> warnings;
   // Derived values for /parameters ("derived.*").
   std::vector<std::pair<std::string, std::string>> derived() const;

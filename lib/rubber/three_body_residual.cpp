@@ -4,8 +4,7 @@
 
 namespace frac::rubber {
 
-std::vector<double> three_body_residual(const BondLaw& law, const Lattice& L, const Eigen::Matrix2d& F,
-                                        double kappa) {
+std::vector<double> three_body_residual(const BondLaw& law, const Lattice& L, const Eigen::Matrix2d& F, double kappa) {
   std::vector<double> c(36, 0.0);
   const double d = L.spacing;
   for (int s = 0; s < 6; ++s)

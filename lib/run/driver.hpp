@@ -19,12 +19,12 @@ struct Continuation;
 namespace frac::run {
 
 struct Outcome {
-  std::int64_t steps = 0;       // the step the run ended at
-  double time = 0;              // s
+  std::int64_t steps = 0;  // the step the run ended at
+  double time = 0;         // s
   std::string stop_reason;
-  double wall_seconds = 0;      // since the progress clock started
-  std::int64_t loop_steps = 0;  // steps of this process's loop (fewer than `steps` in a continued run)
-  double loop_seconds = 0;      // wall time of that loop
+  double wall_seconds = 0;        // since the progress clock started
+  std::int64_t loop_steps = 0;    // steps of this process's loop (fewer than `steps` in a continued run)
+  double loop_seconds = 0;        // wall time of that loop
   std::vector<PhaseTime> phases;  // the time of each phase of the steps
 };
 

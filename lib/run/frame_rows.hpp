@@ -18,7 +18,7 @@ struct FrameRow {
   std::string name, group, unit;
   bool per_link = false;  // one value (row) a beam or bond of the mesh, else a body (cell, node)
   std::size_t components = 1;
-  bool flags = false;     // bytes (fill_flags), else numbers (fill)
+  bool flags = false;  // bytes (fill_flags), else numbers (fill)
   std::function<void(const System&, const dynamics::Integrator&, std::span<double>)> fill;
   std::function<void(const System&, const dynamics::Integrator&, std::span<std::uint8_t>)> fill_flags;
 };
@@ -43,8 +43,10 @@ std::vector<FrameDataset> frame_datasets(const std::vector<FrameRow<System>>& ta
     FrameDataset d{row.group, row.name, row.unit, row.per_link ? links : bodies, row.components, row.flags, {}, {}};
     const System* s = &system;
     const dynamics::Integrator* in = &integrator;
-    if (row.flags) d.fill_flags = [s, in, &row](std::span<std::uint8_t> v) { row.fill_flags(*s, *in, v); };
-    else d.fill = [s, in, &row](std::span<double> v) { row.fill(*s, *in, v); };
+    if (row.flags)
+      d.fill_flags = [s, in, &row](std::span<std::uint8_t> v) { row.fill_flags(*s, *in, v); };
+    else
+      d.fill = [s, in, &row](std::span<double> v) { row.fill(*s, *in, v); };
     out.push_back(std::move(d));
   }
   return out;

@@ -45,12 +45,18 @@ int make(int argc, char** argv) {
   std::string corrupt;
   for (int k = 3; k + 1 < argc; k += 2) {
     const std::string key = argv[k], value = argv[k + 1];
-    if (key == "--frames") frames = std::stol(value);
-    else if (key == "--break-fraction") fraction = std::stod(value);
-    else if (key == "--cut-x") cut_x = std::stod(value);
-    else if (key == "--seed") seed = std::stoull(value);
-    else if (key == "--corrupt") corrupt = value;
-    else throw UsageError("unknown option " + key);
+    if (key == "--frames")
+      frames = std::stol(value);
+    else if (key == "--break-fraction")
+      fraction = std::stod(value);
+    else if (key == "--cut-x")
+      cut_x = std::stod(value);
+    else if (key == "--seed")
+      seed = std::stoull(value);
+    else if (key == "--corrupt")
+      corrupt = value;
+    else
+      throw UsageError("unknown option " + key);
   }
   if (frames < 1) throw UsageError("--frames: at least 1");
 

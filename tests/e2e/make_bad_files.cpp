@@ -65,19 +65,24 @@ int main(int argc, char** argv) {
   cells("negative-area", [](CellMesh& m) { m.area[6] = -m.area[6]; });
   cells("nan-area", [&](CellMesh& m) { m.area[5] = nan; });
   cells("inf-spacing", [](CellMesh& m) { m.spacing = std::numeric_limits<double>::infinity(); });
-  cells("huge-spacing", [](CellMesh& m) { m.spacing = 1e6; });  // would make every tolerance 1e-2 m
+  cells("huge-spacing", [](CellMesh& m) { m.spacing = 1e6; });    // would make every tolerance 1e-2 m
   cells("outside-box", [](CellMesh& m) { m.bounds[2] = 0.04; });  // the right half's centroids outside
   cells("offset-overflow", [](CellMesh& m) { m.vertex_offset[3] = std::numeric_limits<std::int64_t>::max(); });
-  cells("short-centroid", [](CellMesh&) {}, [](frac::io::Group& root) {
-    const auto c = root.read<double>("particles/cells/centroid");
-    H5Ldelete(root.id(), "particles/cells/centroid", H5P_DEFAULT);
-    root.write("particles/cells/centroid", std::span<const double>(c.data(), c.size() - 2), {c.size() / 2 - 1, 2}, "m");
-  });
-  cells("float-offsets", [](CellMesh&) {}, [](frac::io::Group& root) {
-    const auto o = root.read<double>("particles/cells/vertex_offset");
-    H5Ldelete(root.id(), "particles/cells/vertex_offset", H5P_DEFAULT);
-    root.write("particles/cells/vertex_offset", std::span<const double>(o), {o.size()});
-  });
+  cells(
+      "short-centroid", [](CellMesh&) {},
+      [](frac::io::Group& root) {
+        const auto c = root.read<double>("particles/cells/centroid");
+        H5Ldelete(root.id(), "particles/cells/centroid", H5P_DEFAULT);
+        root.write("particles/cells/centroid", std::span<const double>(c.data(), c.size() - 2), {c.size() / 2 - 1, 2},
+                   "m");
+      });
+  cells(
+      "float-offsets", [](CellMesh&) {},
+      [](frac::io::Group& root) {
+        const auto o = root.read<double>("particles/cells/vertex_offset");
+        H5Ldelete(root.id(), "particles/cells/vertex_offset", H5P_DEFAULT);
+        root.write("particles/cells/vertex_offset", std::span<const double>(o), {o.size()});
+      });
   const auto nodes = [&](const std::string& name, const std::function<void(NodeMesh&)>& spoil) {
     NodeMesh m = frac::mesh::make_triangular_lattice({10, 6, 1e-3, "x", 0.0});
     spoil(m);
@@ -125,19 +130,32 @@ int main(int argc, char** argv) {
     out.commit();
   };
   // A mesh with one NaN: every reader of runs refuses the run.
-  dem_run("nan-area", [&](CellMesh& m, int k, frac::io::BodyFrame&) { if (k < 0) m.area[5] = nan; });
+  dem_run("nan-area", [&](CellMesh& m, int k, frac::io::BodyFrame&) {
+    if (k < 0) m.area[5] = nan;
+  });
   // Frame states no run writes: an intact flag of 7, a negative time, a cell at a NaN position or angle.
-  dem_run("intact-7", [](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 2) f.intact[3] = 7; });
-  dem_run("negative-time", [](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 1) f.time = -1; });
-  dem_run("nan-position", [&](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 2) f.position[2 * 4] = nan; });
-  dem_run("nan-angle", [&](CellMesh&, int k, frac::io::BodyFrame& f) { if (k == 2) f.angle[6] = nan; });
+  dem_run("intact-7", [](CellMesh&, int k, frac::io::BodyFrame& f) {
+    if (k == 2) f.intact[3] = 7;
+  });
+  dem_run("negative-time", [](CellMesh&, int k, frac::io::BodyFrame& f) {
+    if (k == 1) f.time = -1;
+  });
+  dem_run("nan-position", [&](CellMesh&, int k, frac::io::BodyFrame& f) {
+    if (k == 2) f.position[2 * 4] = nan;
+  });
+  dem_run("nan-angle", [&](CellMesh&, int k, frac::io::BodyFrame& f) {
+    if (k == 2) f.angle[6] = nan;
+  });
   {
     NodeMesh m = frac::mesh::make_triangular_lattice({10, 6, 1e-3, "x", 0.0});
     m.position[7].y() = nan;
     const std::size_t n = m.nodes(), b = m.bonds();
     frac::ToolRun rubber = frac::start_run("rubber-run", "rubber-run");
-    rubber.parameters = {{"loading.stretch_x", "1"}, {"loading.stretch_y", "1"}, {"boundary.clamp_rows", "0"},
-                         {"material.a", "1600"}, {"material.b", "1.5"}};
+    rubber.parameters = {{"loading.stretch_x", "1"},
+                         {"loading.stretch_y", "1"},
+                         {"boundary.clamp_rows", "0"},
+                         {"material.a", "1600"},
+                         {"material.b", "1.5"}};
     frac::io::OutputFile out(dir + "/bad-run-node-nan.h5");
     frac::io::write_header(out.root(), "run", rubber, out.uuid());
     frac::io::RunWriter writer(out.root(), m, std::vector<double>(n, 1e-6));

@@ -20,8 +20,8 @@ using namespace frac;
 
 namespace {
 
-void write_fragments(const std::string& out_path, const std::vector<double>& mass, const std::vector<std::int64_t>& cells,
-                     const std::string& command) {
+void write_fragments(const std::string& out_path, const std::vector<double>& mass,
+                     const std::vector<std::int64_t>& cells, const std::string& command) {
   io::OutputFile out(out_path);
   ToolRun run = start_run("powerlaw_fit_make_input", command);
   io::write_header(out.root(), "fragments", run, out.uuid());
@@ -50,7 +50,8 @@ int main(int argc, char** argv) {
       std::FILE* f = std::fopen(out.c_str(), "w");
       if (!f) return 1;
       std::fprintf(f, "# %zu values of a power law, alpha = %g, x_min = 1\n", n, alpha);
-      for (std::size_t i = 0; i < n; ++i) std::fprintf(f, "%.17g\n", analysis::draw_continuous(1.0, alpha, INFINITY, rng));
+      for (std::size_t i = 0; i < n; ++i)
+        std::fprintf(f, "%.17g\n", analysis::draw_continuous(1.0, alpha, INFINITY, rng));
       return std::fclose(f) == 0 ? 0 : 1;
     }
     const analysis::DiscreteSampler ds(2, alpha);

@@ -72,7 +72,9 @@ std::vector<char> read_bytes(const std::string& path) {
 
 // One to three mutations of `bytes`, drawn from `rng`.
 std::vector<char> mutate(std::vector<char> bytes, std::mt19937_64& rng) {
-  auto pick = [&](std::size_t n) { return n == 0 ? std::size_t{0} : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+  auto pick = [&](std::size_t n) {
+    return n == 0 ? std::size_t{0} : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+  };
   const int count = 1 + static_cast<int>(pick(3));
   for (int m = 0; m < count && !bytes.empty(); ++m) {
     switch (pick(6)) {
@@ -86,8 +88,17 @@ std::vector<char> mutate(std::vector<char> bytes, std::mt19937_64& rng) {
         bytes.resize(pick(bytes.size()));
         break;
       case 3: {  // a 1, 2, 4 or 8-byte field overwritten with a boundary value
-        static const std::uint64_t values[] = {0, 1, 0x7f, 0xff, 0x7fff, 0xffff, 0x7fffffff, 0xffffffff,
-                                               0x7fffffffffffffff, 0xffffffffffffffff, 0x8000000000000000};
+        static const std::uint64_t values[] = {0,
+                                               1,
+                                               0x7f,
+                                               0xff,
+                                               0x7fff,
+                                               0xffff,
+                                               0x7fffffff,
+                                               0xffffffff,
+                                               0x7fffffffffffffff,
+                                               0xffffffffffffffff,
+                                               0x8000000000000000};
         const std::size_t width = std::size_t{1} << pick(4);
         if (bytes.size() < width) break;
         const std::size_t at = pick(bytes.size() - width + 1);
@@ -134,8 +145,8 @@ std::string absolute_program(const std::string& name) {
 }
 
 // Runs argv in `dir` with the limits; kills the whole process group after `timeout` seconds.
-Result run(const std::vector<std::string>& argv, const std::string& dir, const std::string& stdin_path,
-           double timeout, long memory_mb) {
+Result run(const std::vector<std::string>& argv, const std::string& dir, const std::string& stdin_path, double timeout,
+           long memory_mb) {
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -162,7 +173,8 @@ Result run(const std::vector<std::string>& argv, const std::string& dir, const s
   if (pidfd >= 0) {
     pollfd p{pidfd, POLLIN, 0};
     int ready;
-    do ready = poll(&p, 1, static_cast<int>(timeout * 1000)); while (ready < 0 && errno == EINTR);
+    do ready = poll(&p, 1, static_cast<int>(timeout * 1000));
+    while (ready < 0 && errno == EINTR);
     hung = ready == 0;
     close(pidfd);
   } else {  // no pidfd: poll waitpid
@@ -174,7 +186,8 @@ Result run(const std::vector<std::string>& argv, const std::string& dir, const s
   }
   if (hung) kill(-pid, SIGKILL);
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
   if (hung) return {Outcome::hang, 0};
   if (WIFSIGNALED(status)) return {Outcome::signal, WTERMSIG(status)};
   const int code = WEXITSTATUS(status);
@@ -191,14 +204,22 @@ Options parse(int argc, char** argv) {
       return argv[++k];
     };
     try {
-      if (a == "--spec") o.spec = value();
-      else if (a == "--mutants") o.mutants = std::stol(value());
-      else if (a == "--seed") o.seed = std::stoull(value());
-      else if (a == "--timeout") o.timeout = std::stod(value());
-      else if (a == "--memory") o.memory_mb = std::stol(value());
-      else if (a == "--jobs") o.jobs = std::stoi(value());
-      else if (a == "--work") o.work = value();
-      else usage("unknown option " + a);
+      if (a == "--spec")
+        o.spec = value();
+      else if (a == "--mutants")
+        o.mutants = std::stol(value());
+      else if (a == "--seed")
+        o.seed = std::stoull(value());
+      else if (a == "--timeout")
+        o.timeout = std::stod(value());
+      else if (a == "--memory")
+        o.memory_mb = std::stol(value());
+      else if (a == "--jobs")
+        o.jobs = std::stoi(value());
+      else if (a == "--work")
+        o.work = value();
+      else
+        usage("unknown option " + a);
     } catch (const std::logic_error&) {
       usage(a + ": not a number");
     }
@@ -219,8 +240,10 @@ std::vector<Command> read_spec(const std::string& path) {
     std::string w;
     if (!(words >> c.file) || c.file[0] == '#') continue;
     while (words >> w) {
-      if (w == "<{}") c.stdin_mutant = true;
-      else c.argv.push_back(w);
+      if (w == "<{}")
+        c.stdin_mutant = true;
+      else
+        c.argv.push_back(w);
     }
     if (c.argv.empty()) usage(path + ": no command for " + c.file);
     c.argv[0] = absolute_program(c.argv[0]);
@@ -256,7 +279,9 @@ int main(int argc, char** argv) {
     const std::string dir = std::filesystem::absolute(o.work + "/job" + std::to_string(job)).string();
     for (std::size_t i; (i = next++) < work.size();) {
       const auto& [file, k] = work[i];
-      std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull + std::hash<std::string>{}(std::filesystem::path(file).filename().string()) + static_cast<std::uint64_t>(k));
+      std::mt19937_64 rng(o.seed * 0x9E3779B97F4A7C15ull +
+                          std::hash<std::string>{}(std::filesystem::path(file).filename().string()) +
+                          static_cast<std::uint64_t>(k));
       const std::vector<char> bytes = mutate(originals.at(file), rng);
       std::filesystem::remove_all(dir);
       std::filesystem::create_directories(dir);

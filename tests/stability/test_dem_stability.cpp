@@ -121,7 +121,8 @@ Outcome impact(double speed, double* dt = nullptr) {
   DemScene sc = scene_from(R"(
 [loading]
 kind = impact
-impact_speed = )" + std::to_string(speed) + R"(
+impact_speed = )" + std::to_string(speed) +
+                           R"(
 [integrator]
 dt = auto
 [stop]
@@ -269,9 +270,10 @@ TEST(DemStability, BeamBrokenWhileCompressedThenStretched) {
     EXPECT_GT(strain, 10 * t_eps);
     for (double f : sim.model.forces()) EXPECT_EQ(f, 0.0);
     for (double x : in.q()) EXPECT_TRUE(std::isfinite(x));
-    std::printf("beam compressed then stretched: %ld compressed steps (|Θ| up to %.3g rad, t_Θ = %.3g), broken at "
-                "step %ld at strain %.3g (mode %d), final strain %.3g\n",
-                compressed_steps, max_theta_compressed, t_theta, break_step, strain_at_break, broken[0].mode, strain);
+    std::printf(
+        "beam compressed then stretched: %ld compressed steps (|Θ| up to %.3g rad, t_Θ = %.3g), broken at "
+        "step %ld at strain %.3g (mode %d), final strain %.3g\n",
+        compressed_steps, max_theta_compressed, t_theta, break_step, strain_at_break, broken[0].mode, strain);
   }
   // 2. The whole run: the ledger (kinetic + beam energy + contact work + broken-beam energy) balances.
   // The beam holds all the energy (0.55 J) and loses it within one step: for gear5 a force that vanishes
@@ -322,8 +324,9 @@ TEST(DemStability, MillionStepsOfAnUndampedLattice) {
     // ω_max·dt = 0.09 for both integrators (a quarter of gear5's bound, as at the paper's dt).
     const double omega = max_eigenfrequency(mesh, Material{}, Physics{false, true, false, {}});
     const double dt = 0.09 / omega;
-    Simulation sim(mesh, scene_from(std::string("[physics]\ncontacts = off\nbreaking = off\n[integrator]\nkind = ") +
-                                    kind + "\ndt = " + std::to_string(dt) + "\n[stop]\nt_max = 100\nmax_steps = 1000000\n"));
+    Simulation sim(mesh,
+                   scene_from(std::string("[physics]\ncontacts = off\nbreaking = off\n[integrator]\nkind = ") + kind +
+                              "\ndt = " + std::to_string(dt) + "\n[stop]\nt_max = 100\nmax_steps = 1000000\n"));
     for (std::size_t k = 0; k < sim.v0.size(); ++k) sim.v0[k] = 0.01 * std::sin(1.7 * static_cast<double>(k));
     const Outcome o = run(sim);
     EXPECT_TRUE(o.finite) << kind;

@@ -26,8 +26,8 @@
 namespace frac::rubber {
 namespace {
 
-constexpr double kSpacing = 1e-3;         // m, Δ
-constexpr double kSqrtA = 40;             // m/s, √a of the scenes (material.a = 1600)
+constexpr double kSpacing = 1e-3;           // m, Δ
+constexpr double kSqrtA = 40;               // m/s, √a of the scenes (material.a = 1600)
 constexpr double kTau = kSpacing / kSqrtA;  // s, the natural time unit
 
 mesh::NodeMesh sheet(std::int64_t nx, std::int64_t ny) {
@@ -49,7 +49,8 @@ Rig make_rig(const mesh::NodeMesh& m, double lx, double ly, double noise, const 
   text.precision(17);
   text << "[loading]\nkind = stretch\nstretch_x = " << lx << "\nstretch_y = " << ly
        << "\n[boundary]\nclamp_rows = 0\nclamp_columns = 0\nperiodic = xy\n[initial]\nnoise = " << noise * kSqrtA
-       << "\n" << extra;
+       << "\n"
+       << extra;
   Scene s = Scene::parse(text.str(), "stability.ini");
   const RubberScene sc = read_rubber_scene(s, m);
   s.check_all_used();
@@ -83,10 +84,10 @@ bool all_finite(std::span<const double> x) {
 // start and the largest reached, the momentum drift, and whether everything stayed finite.
 struct Trace {
   double e0 = 0, ke0 = 0, ke_max = 0, pe0 = 0;
-  double max_dev = 0;     // max |E − E0|, J
-  double max_rise = 0;    // max (E − E0), J: heating
-  double drift = 0;       // |mean of the last tenth − mean of the first tenth| of E, J
-  double momentum = 0;    // max |Σv − Σv(0)| / max Σ|v| (the largest momentum scale of the run)
+  double max_dev = 0;   // max |E − E0|, J
+  double max_rise = 0;  // max (E − E0), J: heating
+  double drift = 0;     // |mean of the last tenth − mean of the first tenth| of E, J
+  double momentum = 0;  // max |Σv − Σv(0)| / max Σ|v| (the largest momentum scale of the run)
   bool finite = true;
   long long steps = 0;
 };
@@ -179,9 +180,10 @@ TEST(RubberStability, StretchOfFiveBeyondTheDefaultCutoffIsWarnedAboutNamingTheN
     EXPECT_TRUE(tr.finite);
     EXPECT_LE(tr.max_dev, 1e-3 * tr.ke0) << lx << ", " << ly;
     EXPECT_LE(tr.momentum, 1e-10) << lx << ", " << ly;
-    std::printf("[measured] (%g, %g), u_c = 3.5Δ (warned): u_0 = %.4gΔ, dt = %.3g τ, 2000 Verlet steps: "
-                "|ΔE| %.2e of KE0, momentum %.1e\n",
-                lx, ly, u0 / kSpacing, r.setup.dt / kTau, tr.max_dev / tr.ke0, tr.momentum);
+    std::printf(
+        "[measured] (%g, %g), u_c = 3.5Δ (warned): u_0 = %.4gΔ, dt = %.3g τ, 2000 Verlet steps: "
+        "|ΔE| %.2e of KE0, momentum %.1e\n",
+        lx, ly, u0 / kSpacing, r.setup.dt / kTau, tr.max_dev / tr.ke0, tr.momentum);
   }
 }
 
@@ -196,8 +198,8 @@ TEST(RubberStability, StretchOfFiveHeldByAHigherCutoff) {
     for (const auto kind : {dynamics::IntegratorKind::verlet, dynamics::IntegratorKind::gear5}) {
       std::ostringstream extra;
       extra.precision(17);
-      extra << "[law]\ncutoff_length = " << u0 + 20 * 0.05 * kSpacing << "\n[integrator]\nkind = " << dynamics::name(kind)
-            << "\n";
+      extra << "[law]\ncutoff_length = " << u0 + 20 * 0.05 * kSpacing
+            << "\n[integrator]\nkind = " << dynamics::name(kind) << "\n";
       Rig r = make_rig(m, lx, ly, 0.02, extra.str());
       EXPECT_TRUE(r.setup.warnings.empty()) << r.setup.warnings[0];
       EXPECT_FALSE(std::isnan(r.setup.lattice_x.transverse) || std::isnan(r.setup.lattice_x.longitudinal) ||
@@ -207,10 +209,11 @@ TEST(RubberStability, StretchOfFiveHeldByAHigherCutoff) {
       EXPECT_TRUE(tr.finite);
       EXPECT_LE(tr.max_dev, 1e-2 * tr.ke0) << lx << ", " << ly << ", " << dynamics::name(kind);
       EXPECT_LE(tr.momentum, 1e-10);
-      std::printf("[measured] (%g, %g), u_c = u_0 + 20 widths = %.3gΔ, %s: dt = %.3g τ, 5000 steps: max |E − E0| "
-                  "%.2e of KE0 (stored energy %.3g KE0), momentum %.1e\n",
-                  lx, ly, u0 / kSpacing + 1, std::string(dynamics::name(kind)).c_str(), r.setup.dt / kTau,
-                  tr.max_dev / tr.ke0, tr.pe0 / tr.ke0, tr.momentum);
+      std::printf(
+          "[measured] (%g, %g), u_c = u_0 + 20 widths = %.3gΔ, %s: dt = %.3g τ, 5000 steps: max |E − E0| "
+          "%.2e of KE0 (stored energy %.3g KE0), momentum %.1e\n",
+          lx, ly, u0 / kSpacing + 1, std::string(dynamics::name(kind)).c_str(), r.setup.dt / kTau, tr.max_dev / tr.ke0,
+          tr.pe0 / tr.ke0, tr.momentum);
     }
   }
 }
@@ -234,14 +237,17 @@ TEST(RubberStability, BondsHeldAtTheCutoff) {
     dynamics::IntegratorKind kind;
     double safety, tolerance;
   };
-  for (const Case c : {Case{dynamics::IntegratorKind::gear5, 0.5, 0.01}, Case{dynamics::IntegratorKind::verlet, 0.125, 0.01},
-                       Case{dynamics::IntegratorKind::verlet, 0.5, 0.5}}) {
+  for (const Case c :
+       {Case{dynamics::IntegratorKind::gear5, 0.5, 0.01}, Case{dynamics::IntegratorKind::verlet, 0.125, 0.01},
+        Case{dynamics::IntegratorKind::verlet, 0.5, 0.5}}) {
     const std::string name = std::string(dynamics::name(c.kind));
-    Rig r = make_rig(m, 2, 2, 0.02,
-                     "[law]\ncutoff_length = 2e-3\n[integrator]\nkind = " + name + "\nsafety = " + std::to_string(c.safety) + "\n");
+    Rig r = make_rig(
+        m, 2, 2, 0.02,
+        "[law]\ncutoff_length = 2e-3\n[integrator]\nkind = " + name + "\nsafety = " + std::to_string(c.safety) + "\n");
     bool named = false;
     for (const auto& w : r.setup.warnings)
-      named = named || (w.find("is 0 cut-off widths") != std::string::npos && w.find("c_T = unstable") != std::string::npos);
+      named = named ||
+              (w.find("is 0 cut-off widths") != std::string::npos && w.find("c_T = unstable") != std::string::npos);
     EXPECT_TRUE(named) << (r.setup.warnings.empty() ? "no warning" : r.setup.warnings[0]);
     long long crossings = 0;
     std::vector<std::size_t> events;
@@ -257,10 +263,11 @@ TEST(RubberStability, BondsHeldAtTheCutoff) {
     EXPECT_GT(tr.ke_max, 0.1 * std::abs(tr.pe0)) << "the sheet should fail";
     EXPECT_LE(tr.max_dev, c.tolerance * tr.ke_max) << name << ", safety " << c.safety;
     EXPECT_LE(tr.momentum, 1e-10);
-    std::printf("[measured] bonds at u_c (λ = 2, u_c = 2Δ), %s at safety %g: dt = %.3g τ, %lld steps, %lld bonds "
-                "past u_c, KE_max %.2f of the stored energy: max |E − E0| %.2e of KE_max, momentum %.1e\n",
-                name.c_str(), c.safety, r.setup.dt / kTau, steps, crossings, tr.ke_max / std::abs(tr.pe0),
-                tr.max_dev / tr.ke_max, tr.momentum);
+    std::printf(
+        "[measured] bonds at u_c (λ = 2, u_c = 2Δ), %s at safety %g: dt = %.3g τ, %lld steps, %lld bonds "
+        "past u_c, KE_max %.2f of the stored energy: max |E − E0| %.2e of KE_max, momentum %.1e\n",
+        name.c_str(), c.safety, r.setup.dt / kTau, steps, crossings, tr.ke_max / std::abs(tr.pe0),
+        tr.max_dev / tr.ke_max, tr.momentum);
   }
 }
 
@@ -307,10 +314,11 @@ TEST(RubberStability, ANodeSurroundedByBrokenBonds) {
     // the largest kinetic energy. Verlet at the automatic step (ω_far·dt = 0.09; the rim nodes, with
     // incomplete three-body sums, ring faster): measured 0.56 %; 2 % leaves room for other holes.
     EXPECT_LE(tr.max_dev, 2e-2 * tr.ke_max) << (irreversible ? "broken" : "removed");
-    std::printf("[measured] lone node (%s), 4000 Verlet steps of %.3g τ: KE reached %.3g of |E_pot|, |ΔE| %.2e of "
-                "it, momentum %.1e\n",
-                irreversible ? "bonds broken" : "bonds removed", r.setup.dt / kTau, tr.ke_max / std::abs(tr.pe0),
-                tr.max_dev / tr.ke_max, tr.momentum);
+    std::printf(
+        "[measured] lone node (%s), 4000 Verlet steps of %.3g τ: KE reached %.3g of |E_pot|, |ΔE| %.2e of "
+        "it, momentum %.1e\n",
+        irreversible ? "bonds broken" : "bonds removed", r.setup.dt / kTau, tr.ke_max / std::abs(tr.pe0),
+        tr.max_dev / tr.ke_max, tr.momentum);
     EXPECT_LE(tr.momentum, 1e-10);
   }
 }
@@ -374,10 +382,11 @@ TEST(RubberStability, AFreeNodeFlyingOff) {
     const double kick = 0.5 * model.node_mass() * speed * speed;
     EXPECT_LE(tr.max_dev, c.tolerance * kick) << what;
     EXPECT_LE(tr.momentum, 1e-10);
-    std::printf("[measured] node flying off at 50 √a (%s): dt = %.3g τ, free after %lld steps with %.3g of its "
-                "kinetic energy; max |E − E0| %.2e of the kick, momentum %.1e\n",
-                what, r.setup.dt / kTau, steps - free_steps,
-                (vx_free * vx_free + vy_free * vy_free) / (speed * speed), tr.max_dev / kick, tr.momentum);
+    std::printf(
+        "[measured] node flying off at 50 √a (%s): dt = %.3g τ, free after %lld steps with %.3g of its "
+        "kinetic energy; max |E − E0| %.2e of the kick, momentum %.1e\n",
+        what, r.setup.dt / kTau, steps - free_steps, (vx_free * vx_free + vy_free * vy_free) / (speed * speed),
+        tr.max_dev / kick, tr.momentum);
   }
 }
 
@@ -397,7 +406,8 @@ TEST(RubberStability, MillionStepsOfAnUndampedElasticLattice) {
     dynamics::IntegratorKind kind;
     double fluctuation, drift;  // tolerances, of KE0
   };
-  for (const Case c : {Case{dynamics::IntegratorKind::verlet, 5e-3, 1e-6}, Case{dynamics::IntegratorKind::gear5, 1e-4, 1e-6}}) {
+  for (const Case c :
+       {Case{dynamics::IntegratorKind::verlet, 5e-3, 1e-6}, Case{dynamics::IntegratorKind::gear5, 1e-4, 1e-6}}) {
     const std::string name(dynamics::name(c.kind));
     Rig r = make_rig(m, 1.2, 3, 0.02, "[integrator]\nkind = " + name + "\n");
     EXPECT_TRUE(r.setup.warnings.empty());
@@ -405,10 +415,11 @@ TEST(RubberStability, MillionStepsOfAnUndampedElasticLattice) {
     const Trace tr = integrate(*r.sys.model, *in, 1000000, 100);
     EXPECT_TRUE(tr.finite);
     const double fluct = tr.max_dev / tr.ke0, drift = tr.drift / tr.ke0;
-    std::printf("[measured] 10^6 steps, %s, dt = %.3g τ (ω_far dt = %.3g, %.0f τ): max |E − E0| %.2e of KE0, drift "
-                "(last tenth − first tenth) %.2e, momentum %.1e\n",
-                name.c_str(), r.setup.dt / kTau, r.setup.omega_far * r.setup.dt, 1e6 * r.setup.dt / kTau, fluct, drift,
-                tr.momentum);
+    std::printf(
+        "[measured] 10^6 steps, %s, dt = %.3g τ (ω_far dt = %.3g, %.0f τ): max |E − E0| %.2e of KE0, drift "
+        "(last tenth − first tenth) %.2e, momentum %.1e\n",
+        name.c_str(), r.setup.dt / kTau, r.setup.omega_far * r.setup.dt, 1e6 * r.setup.dt / kTau, fluct, drift,
+        tr.momentum);
     EXPECT_LT(fluct, c.fluctuation) << name;
     EXPECT_LT(drift, c.drift) << name;
     EXPECT_LE(tr.momentum, 1e-10);

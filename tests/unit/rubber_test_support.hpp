@@ -8,15 +8,14 @@
 
 #include <Eigen/Core>
 
+#include "continuum/mooney_rivlin.hpp"
 #include "rubber/bond_law.hpp"
 #include "rubber/model.hpp"
-#include "continuum/mooney_rivlin.hpp"
 
 namespace frac::rubber::test {
 
 inline BondLaw natural_law(double b, double us, double uc, double w, const char* pair = "marder",
-                           const char* cutoff = "fermi", const char* angle = "marder",
-                           const char* weight = "pair") {
+                           const char* cutoff = "fermi", const char* angle = "marder", const char* weight = "pair") {
   LawParams p;
   p.spacing = 1;
   p.A = frac::mr::lattice_A(1, 1, 1);

@@ -9,7 +9,6 @@
 #include "core/checkpoint_options.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "test_support.hpp"
 #include "dynamics/integrator.hpp"
 #include "io/checkpoint.hpp"
 #include "io/header.hpp"
@@ -17,6 +16,7 @@
 #include "io/run_io.hpp"
 #include "mesh/node_mesh.hpp"
 #include "mesh_test_support.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;
@@ -129,7 +129,7 @@ TEST(Checkpoint, RefusesAnEntryOfAnotherSizeOrType) {
   io::StateReader r(root.group("state"));
   std::vector<double> as_double;
   StateArchive::Scope scope(r, "holder");
-  EXPECT_THROW(r.array("n", as_double), InputError);           // int64, not float64
+  EXPECT_THROW(r.array("n", as_double), InputError);  // int64, not float64
   std::vector<std::uint8_t> missing;
   EXPECT_THROW(r.array("no_such_entry", missing), InputError);  // missing
 }

@@ -109,8 +109,7 @@ TEST(MachAngle, IsotropicSheetGivesAsinOfTheSpeedRatio) {
   // b = 0: c_T = c_L = λ√a in every direction of an equibiaxial stretch, so sin α = c/v.
   const MooneyRivlin m{1600, 0.0, 1.0};
   const double c = 1.5 * 40.0;
-  for (double v : {61.0, 90.0, 200.0})
-    EXPECT_NEAR(mach_angle(m, {1.5, 1.5}, v, true), std::asin(c / v), 1e-12) << v;
+  for (double v : {61.0, 90.0, 200.0}) EXPECT_NEAR(mach_angle(m, {1.5, 1.5}, v, true), std::asin(c / v), 1e-12) << v;
   EXPECT_TRUE(std::isnan(mach_angle(m, {1.5, 1.5}, 59.0, true)));
 }
 
@@ -123,7 +122,8 @@ TEST(MachAngle, StretchedSheetSatisfiesTheSteadyFrontCondition) {
     const double alpha = mach_angle(m, s, v, longitudinal);
     const MrWaveSpeeds c = mooney_rivlin_speeds(m, s, std::numbers::pi / 2 - alpha);
     EXPECT_NEAR(v * std::sin(alpha), longitudinal ? c.longitudinal : c.shear, 1e-9);
-    const double along_x = longitudinal ? mooney_rivlin_speeds(m, s, 0).longitudinal : mooney_rivlin_speeds(m, s, 0).shear;
+    const double along_x =
+        longitudinal ? mooney_rivlin_speeds(m, s, 0).longitudinal : mooney_rivlin_speeds(m, s, 0).shear;
     EXPECT_GT(alpha, std::asin(along_x / v));
   }
   EXPECT_NEAR(mach_angle(m, s, v, true) / kDeg, 60.8, 0.1);

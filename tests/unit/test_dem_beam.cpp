@@ -135,7 +135,8 @@ TEST(DemBeam, CoRotationalLawOfTheNote) {
     const Expected x = note_law(dx, dy, psi0, phi_i, phi_j, kL0, k);
     const double fs = std::max({std::hypot(x.fx, x.fy), std::abs(x.mi) / kL0, std::abs(x.mj) / kL0});
     const double err = std::max({std::abs(r.fx - x.fx), std::abs(r.fy - x.fy), std::abs(r.torque_i - x.mi) / kL0,
-                                 std::abs(r.torque_j - x.mj) / kL0}) / fs;
+                                 std::abs(r.torque_j - x.mj) / kL0}) /
+                       fs;
     worst = std::max(worst, err);
     ASSERT_LT(err, 1e-12) << "n = " << n;
     EXPECT_LT(rel(r.energy, x.energy), 1e-12);
@@ -263,8 +264,8 @@ TEST(DemBeam, RigidRotationMakesNoForce) {
       const double c = std::cos(w), s = std::sin(w);
       const double dx = kL0 * (c * e0x - s * e0y), dy = kL0 * (s * e0x + c * e0y);
       const BeamResponse r = beam_response(dx, dy, e0x, e0y, w, w, kL0, k);
-      const double err = std::max({std::abs(r.fx), std::abs(r.fy), std::abs(r.torque_i) / kL0,
-                                   std::abs(r.torque_j) / kL0}) / scale;
+      const double err =
+          std::max({std::abs(r.fx), std::abs(r.fy), std::abs(r.torque_i) / kL0, std::abs(r.torque_j) / kL0}) / scale;
       worst = std::max(worst, err);
       EXPECT_LT(err, 1e-9) << "ω = " << w << ", ψ0 = " << psi0;
       EXPECT_LT(std::abs(r.energy), 1e-18 * scale * kL0);
@@ -294,7 +295,8 @@ TEST(DemBeam, RigidRotationOfADeformedPairTurnsItsForces) {
     const BeamResponse b = beam_response(c * dx - s * dy, s * dx + c * dy, e0x, e0y, pi + w, pj + w, kL0, k);
     const double fs = std::max({std::hypot(a.fx, a.fy), std::abs(a.torque_i) / kL0, std::abs(a.torque_j) / kL0});
     const double err = std::max({std::abs(b.fx - (c * a.fx - s * a.fy)), std::abs(b.fy - (s * a.fx + c * a.fy)),
-                                 std::abs(b.torque_i - a.torque_i) / kL0, std::abs(b.torque_j - a.torque_j) / kL0}) / fs;
+                                 std::abs(b.torque_i - a.torque_i) / kL0, std::abs(b.torque_j - a.torque_j) / kL0}) /
+                       fs;
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-11) << "n = " << n;
   }
@@ -314,8 +316,12 @@ TEST(DemBeam, ForcesAreMinusTheEnergyGradient) {
     const double e0x = std::cos(psi0), e0y = std::sin(psi0);
     const double turn = (rng.uniform() - 0.5) * 2;
     const double l = kL0 * (1 + 0.04 * (rng.uniform() - 0.5)), tilt = 0.04 * (rng.uniform() - 0.5);
-    std::array<double, 6> x{0.0, 0.0, turn + 0.04 * (rng.uniform() - 0.5), l * std::cos(psi0 + turn + tilt),
-                            l * std::sin(psi0 + turn + tilt), turn + 0.04 * (rng.uniform() - 0.5)};
+    std::array<double, 6> x{0.0,
+                            0.0,
+                            turn + 0.04 * (rng.uniform() - 0.5),
+                            l * std::cos(psi0 + turn + tilt),
+                            l * std::sin(psi0 + turn + tilt),
+                            turn + 0.04 * (rng.uniform() - 0.5)};
     auto energy = [&](const std::array<double, 6>& s) {
       return beam_response(s[3] - s[0], s[4] - s[1], e0x, e0y, s[2], s[5], kL0, k).energy;
     };

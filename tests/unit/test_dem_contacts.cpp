@@ -8,8 +8,8 @@
 // and the overlap area carry a few ulps of the polygon size s; relative to the overlap (width δ ≥ 0.1 s)
 // that is ~1e-14, and a translation by 0.3 m (ulp 5.6e-17 m on s = 1 cm) adds ~1e-13. 1e-12 leaves a
 // factor of ten.
-#include <array>
 #include <gtest/gtest.h>
+#include <array>
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +52,9 @@ constexpr double kY = 1e9, kH = 0.01, kRho = 5000;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 Vec2 perp(const Vec2& a) { return {-a.y(), a.x()}; }
-Vec2 rot(const Vec2& a, double w) { return {std::cos(w) * a.x() - std::sin(w) * a.y(), std::sin(w) * a.x() + std::cos(w) * a.y()}; }
+Vec2 rot(const Vec2& a, double w) {
+  return {std::cos(w) * a.x() - std::sin(w) * a.y(), std::sin(w) * a.x() + std::cos(w) * a.y()};
+}
 
 // A mesh of axis-aligned rectangles (w × h each) at the given reference centroids, no beams.
 CellMesh rectangles(const std::vector<std::pair<double, double>>& sizes, const std::vector<Vec2>& centres, double g) {
@@ -110,10 +112,10 @@ PairForce note_pair(const Kin& i, const Kin& j, const Vec2& R, const Vec2& n, do
 struct Case {
   const char* name;
   std::vector<std::pair<double, double>> sizes;
-  Vec2 cj;     // centroid of j (i at the origin), unrotated frame
-  double area; // hand: overlap area
-  Vec2 R;      // hand: contact point
-  Vec2 n;      // hand: unit normal from i to j
+  Vec2 cj;      // centroid of j (i at the origin), unrotated frame
+  double area;  // hand: overlap area
+  Vec2 R;       // hand: contact point
+  Vec2 n;       // hand: unit normal from i to j
 };
 
 std::vector<Case> hand_cases() {
@@ -126,7 +128,8 @@ std::vector<Case> hand_cases() {
     // P2 − P1 = (−δ, s − y_off), pointing from i to j.
     const Vec2 p1(s / 2, yoff - s / 2), p2(s / 2 - d, s / 2);
     const Vec2 nn = Vec2(s - yoff, d).normalized();
-    cs.push_back({"equal squares, corner overlap", {{s, s}, {s, s}}, Vec2(s - d, yoff), d * (s - yoff), 0.5 * (p1 + p2), nn});
+    cs.push_back(
+        {"equal squares, corner overlap", {{s, s}, {s, s}}, Vec2(s - d, yoff), d * (s - yoff), 0.5 * (p1 + p2), nn});
   }
   {
     // A small square (side s2) pressed by δ into the right face of a big one (side s), off centre by y_off:
@@ -134,13 +137,21 @@ std::vector<Case> hand_cases() {
     // The lever arm of R about c_i is y_off: τ_i = y_off·Y A h/L_c, τ_j = 0 (R on j's axis).
     // (y_off2 = 0.2 s keeps j's sides clear of i's top side: no collinear edges.)
     const double s2 = 0.4 * s, yoff2 = 0.2 * s;
-    cs.push_back({"small square into a face, off centre", {{s, s}, {s2, s2}}, Vec2(s / 2 + s2 / 2 - d, yoff2), s2 * d,
-                  Vec2(s / 2, yoff2), Vec2(1, 0)});
+    cs.push_back({"small square into a face, off centre",
+                  {{s, s}, {s2, s2}},
+                  Vec2(s / 2 + s2 / 2 - d, yoff2),
+                  s2 * d,
+                  Vec2(s / 2, yoff2),
+                  Vec2(1, 0)});
   }
   {
     // Validation E7: equal squares face to face, pressed by δ: A = s δ, n along the centre line, R on it
     // (collinear top and bottom sides: the crossings are the midpoints of the shared runs), torque 0.
-    cs.push_back({"equal squares face to face (E7)", {{s, s}, {s, s}}, Vec2(s - d, 0), s * d, Vec2(s / 2 - d / 2, 0),
+    cs.push_back({"equal squares face to face (E7)",
+                  {{s, s}, {s, s}},
+                  Vec2(s - d, 0),
+                  s * d,
+                  Vec2(s / 2 - d / 2, 0),
                   Vec2(1, 0)});
   }
   return cs;
@@ -171,8 +182,8 @@ struct LibResult {
   std::vector<double> f;
   double power[3];
 };
-LibResult library(const CellMesh& mesh, const Bodies& bodies, const std::vector<double>& q, const std::vector<double>& v,
-                  const ContactParameters& p, bool damping, bool friction) {
+LibResult library(const CellMesh& mesh, const Bodies& bodies, const std::vector<double>& q,
+                  const std::vector<double>& v, const ContactParameters& p, bool damping, bool friction) {
   LibResult r;
   ContactSearch search(mesh, bodies);
   search.find(q, r.list);
@@ -485,8 +496,8 @@ TEST(DemContacts, NeighbourListKeptAcrossStatesMissesNoPair) {
       std::set<std::pair<int, int>> found;
       for (std::size_t k = 0; k < list.size(); ++k) found.insert({list.i[k], list.j[k]});
       const BruteForcePairs brute = brute_force_pairs(s.mesh, bodies, s.q);
-      ASSERT_EQ(static_cast<std::size_t>(list.candidate_pairs), brute.circles) << "state " << step << ", " << threads
-                                                                               << " threads";
+      ASSERT_EQ(static_cast<std::size_t>(list.candidate_pairs), brute.circles)
+          << "state " << step << ", " << threads << " threads";
       ASSERT_EQ(found, brute.overlapping) << "state " << step << ", " << threads << " threads";
       for (std::size_t k = 0; k < 3 * n; ++k) s.q[k] += drift[k];
     }
@@ -521,8 +532,8 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
       search.find(s.q, list);
       ASSERT_GT(list.size(), 256u) << "the test needs the parallel path";
       for (std::size_t k = 0; k < list.size(); ++k)
-        entries[threads - 1].push_back({static_cast<double>(list.i[k]), static_cast<double>(list.j[k]), list.area[k],
-                                        list.nx[k]});
+        entries[threads - 1].push_back(
+            {static_cast<double>(list.i[k]), static_cast<double>(list.j[k]), list.area[k], list.nx[k]});
       auto& f = forces[threads - 1];
       f = f0;
       const std::vector<double> power = law_powers(list, p, bodies, s.q, s.v, {"contact", "damping", "friction"});
@@ -533,8 +544,10 @@ TEST(DemContacts, ContactForcesAreSummedInContactOrderOnAnyThreadCount) {
       const auto u = static_cast<std::size_t>(threads - 1);
       ASSERT_EQ(entries[u], entries[0]) << "seed " << seed << ": the list on " << threads << " threads";
       for (std::size_t k = 0; k < 3 * n; ++k)
-        ASSERT_EQ(forces[0][k], forces[u][k]) << "seed " << seed << ", coordinate " << k << ", " << threads << " threads";
-      for (int t = 0; t < 3; ++t) EXPECT_EQ(powers[0][t], powers[u][t]) << "term " << t << ", " << threads << " threads";
+        ASSERT_EQ(forces[0][k], forces[u][k])
+            << "seed " << seed << ", coordinate " << k << ", " << threads << " threads";
+      for (int t = 0; t < 3; ++t)
+        EXPECT_EQ(powers[0][t], powers[u][t]) << "term " << t << ", " << threads << " threads";
     }
   }
 }
@@ -624,11 +637,11 @@ TEST(DemContacts, PairInteractionsConserveMomentumOnRandomOverlaps) {
         max_contacts = std::max(max_contacts, model.contacts().size());
       }
       const auto ke1 = model.kinetic_energy(in->v());
-      std::printf("[ contacts ] %s seed %lu, dt %.3g s: %ld evaluations, up to %zu contacts; worst |ΣF|/Σ|F| = %.2e, "
-                  "worst torque residual = %.2e, momentum drift = %.2e of Σm|v|; kinetic energy %.3g -> %.3g J\n",
-                  std::string(frac::dynamics::name(kind)).c_str(), static_cast<unsigned long>(seed), dt,
-                  sys.evaluations, max_contacts, sys.worst_force, sys.worst_torque, drift / scale, ke0[0] + ke0[1],
-                  ke1[0] + ke1[1]);
+      std::printf(
+          "[ contacts ] %s seed %lu, dt %.3g s: %ld evaluations, up to %zu contacts; worst |ΣF|/Σ|F| = %.2e, "
+          "worst torque residual = %.2e, momentum drift = %.2e of Σm|v|; kinetic energy %.3g -> %.3g J\n",
+          std::string(frac::dynamics::name(kind)).c_str(), static_cast<unsigned long>(seed), dt, sys.evaluations,
+          max_contacts, sys.worst_force, sys.worst_torque, drift / scale, ke0[0] + ke0[1], ke1[0] + ke1[1]);
       EXPECT_GT(max_contacts, s.mesh.cells() / 2);
       EXPECT_GT(model.calls("friction"), 1000);
       EXPECT_LT(sys.worst_force, 1e-12);

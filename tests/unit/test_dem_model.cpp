@@ -142,9 +142,8 @@ DriftResult isolated_body_drift(IntegratorKind kind, int steps, double dt, bool 
     model.accelerations(0, qm, v0, am);
     for (std::size_t k = 0; k < d; ++k) jerk[k] = (ap[k] - am[k]) / (2 * eps);
     model.accelerations(0, q0, v0, a);
-    dynamic_cast<frac::dynamics::Gear5&>(*in).start_exact(model, 0.0, dt,
-                                                            {q0, v0, a, jerk, std::vector<double>(d, 0.0),
-                                                             std::vector<double>(d, 0.0)});
+    dynamic_cast<frac::dynamics::Gear5&>(*in).start_exact(
+        model, 0.0, dt, {q0, v0, a, jerk, std::vector<double>(d, 0.0), std::vector<double>(d, 0.0)});
   } else {
     in->start(model, 0.0, dt, q0, v0);
   }
@@ -190,15 +189,16 @@ TEST(DemModel, IsolatedBodyConservesEnergyAndMomentum) {
   const DriftResult g = isolated_body_drift(IntegratorKind::gear5, 10000, 1e-6);
   const DriftResult j = isolated_body_drift(IntegratorKind::gear5, 10000, 1e-6, true);
   const DriftResult v = isolated_body_drift(IntegratorKind::verlet, 10000, 1e-6);
-  std::printf("[ drift    ] isolated body, 208 cells, 1e4 steps of 1e-6 s (omega_max dt = %.3f), relative to E(0):\n"
-              "             gear5 (usual start): start offset %.2e, drift after it %.2e, total %.2e; momentum %.2e, "
-              "angular momentum %.2e\n"
-              "             gear5 (jerk start) : start offset %.2e, drift after it %.2e, total %.2e; momentum %.2e, "
-              "angular momentum %.2e\n"
-              "             verlet             : start offset %.2e, drift after it %.2e, total %.2e; momentum %.2e, "
-              "angular momentum %.2e\n",
-              g.omega_dt, g.offset, g.drift, g.total, g.momentum, g.angular, j.offset, j.drift, j.total, j.momentum,
-              j.angular, v.offset, v.drift, v.total, v.momentum, v.angular);
+  std::printf(
+      "[ drift    ] isolated body, 208 cells, 1e4 steps of 1e-6 s (omega_max dt = %.3f), relative to E(0):\n"
+      "             gear5 (usual start): start offset %.2e, drift after it %.2e, total %.2e; momentum %.2e, "
+      "angular momentum %.2e\n"
+      "             gear5 (jerk start) : start offset %.2e, drift after it %.2e, total %.2e; momentum %.2e, "
+      "angular momentum %.2e\n"
+      "             verlet             : start offset %.2e, drift after it %.2e, total %.2e; momentum %.2e, "
+      "angular momentum %.2e\n",
+      g.omega_dt, g.offset, g.drift, g.total, g.momentum, g.angular, j.offset, j.drift, j.total, j.momentum, j.angular,
+      v.offset, v.drift, v.total, v.momentum, v.angular);
   EXPECT_LT(g.drift, 1e-4);
   EXPECT_LT(g.offset, 1e-3);
   EXPECT_LT(j.total, 1e-4);
@@ -248,18 +248,23 @@ struct SceneCase {
 // test_integrator); larger rates are the subject of AutoTimeStepIsStableWithDampingAndFriction.
 TEST(DemModel, EnergyBalanceInEveryScene) {
   const std::vector<std::pair<std::string, std::string>> dissipative{
-      {"physics.damping", "on"}, {"material.gamma_n", "2e3"}, {"physics.friction", "on"},
+      {"physics.damping", "on"},    {"material.gamma_n", "2e3"}, {"physics.friction", "on"},
       {"material.friction", "0.3"}, {"material.gamma_t", "2e3"}, {"physics.breaking", "on"}};
   std::vector<SceneCase> cases{
       {"explosion", disc_mesh(300, 3), {{"stop.t_max", "5e-4"}}},
       {"impact", rect_mesh(24, 12, 4), {{"stop.t_max", "5e-4"}}},
       {"pulse", disc_mesh(300, 5), {{"stop.t_max", "2e-4"}}},
-      {"uniaxial", rect_mesh(12, 20, 6),
+      {"uniaxial",
+       rect_mesh(12, 20, 6),
        {{"stop.t_max", "1e-3"}, {"loading.boundary_speed", "5"}, {"loading.ramp", "1e-4"}}},
-      {"uniaxial", rect_mesh(12, 20, 7),
-       {{"stop.t_max", "1e-3"}, {"loading.boundary_speed", "5"}, {"loading.ramp", "1e-4"},
+      {"uniaxial",
+       rect_mesh(12, 20, 7),
+       {{"stop.t_max", "1e-3"},
+        {"loading.boundary_speed", "5"},
+        {"loading.ramp", "1e-4"},
         {"loading.direction", "compression"}}},
-      {"confined-compression", rect_mesh(12, 20, 8),
+      {"confined-compression",
+       rect_mesh(12, 20, 8),
        {{"stop.t_max", "1e-3"}, {"loading.boundary_speed", "5"}, {"loading.ramp", "1e-4"}}},
   };
   for (auto& c : cases) {
@@ -269,10 +274,11 @@ TEST(DemModel, EnergyBalanceInEveryScene) {
     const auto scene = load_scene(c.name, set);
     const auto s = run(c.mesh, scene);
     const double rel = s.energy_error / s.energy_scale;
-    std::printf("[ ledger   ] %-22s %4zu cells: %6lld steps of %.3g s (%s), %5lld beams broken, scale %.4g J, "
-                "max |balance - initial| = %.3g J = %.3f%%\n",
-                c.name.c_str(), c.mesh.cells(), static_cast<long long>(s.steps), s.dt, s.stop_reason.c_str(),
-                static_cast<long long>(s.broken), s.energy_scale, s.energy_error, 100 * rel);
+    std::printf(
+        "[ ledger   ] %-22s %4zu cells: %6lld steps of %.3g s (%s), %5lld beams broken, scale %.4g J, "
+        "max |balance - initial| = %.3g J = %.3f%%\n",
+        c.name.c_str(), c.mesh.cells(), static_cast<long long>(s.steps), s.dt, s.stop_reason.c_str(),
+        static_cast<long long>(s.broken), s.energy_scale, s.energy_error, 100 * rel);
     EXPECT_GT(s.energy_scale, 0) << c.name;
     EXPECT_LT(rel, 0.01) << c.name;
     if (c.name != "pulse") {
@@ -305,7 +311,8 @@ TEST(DemModel, ImpactProjectileKeepsItsEnergyOnAFinerMesh) {
   o.nx = 48, o.ny = 24, o.width = 24 * kG, o.height = 12 * kG, o.seed = 9;
   const CellMesh fine = frac::mesh::make_random_lattice(o);
   const auto coarse_scene = load_scene("impact", {});
-  const auto fine_scene = load_scene("impact", {{"loading.impact_width", std::to_string(kG)}, {"integrator.dt", "5e-7"}});
+  const auto fine_scene =
+      load_scene("impact", {{"loading.impact_width", std::to_string(kG)}, {"integrator.dt", "5e-7"}});
   for (const auto& [mesh, scene] : {std::pair{rect_mesh(24, 12, 9), coarse_scene}, std::pair{fine, fine_scene}}) {
     const frac::dem::Simulation sim(mesh, scene);
     const auto kick = frac::dem::kick_report(sim);
@@ -509,10 +516,11 @@ TEST(DemModel, AutoTimeStepIsStableWithDampingAndFriction) {
   const double mild = two_square_balance(true, 0.01, &dt_mild);  // γ_eff·dt ≈ 0.025: stable
   const double damp = two_square_balance(false, 0.25, &dt_damp);
   const double fric = two_square_balance(true, 0.1, &dt_fric);
-  std::printf("[ timestep ] two squares, dt = auto: friction gamma_t dt = 0.01 -> dt %.3g s, balance error %.2e; "
-              "damping gamma_n dt0 = 0.25 -> dt %.3g s, error %.2e; friction gamma_t dt0 = 0.1 -> dt %.3g s, error "
-              "%.2e (of the initial energy)\n",
-              dt_mild, mild, dt_damp, damp, dt_fric, fric);
+  std::printf(
+      "[ timestep ] two squares, dt = auto: friction gamma_t dt = 0.01 -> dt %.3g s, balance error %.2e; "
+      "damping gamma_n dt0 = 0.25 -> dt %.3g s, error %.2e; friction gamma_t dt0 = 0.1 -> dt %.3g s, error "
+      "%.2e (of the initial energy)\n",
+      dt_mild, mild, dt_damp, damp, dt_fric, fric);
   EXPECT_LT(mild, 0.01);
   EXPECT_LT(damp, 0.01) << "dt = auto is unstable with normal damping (γ_N·dt = " << 0.25 * dt_damp / dt_mild
                         << "); the time-step check ignores γ_N";
@@ -527,8 +535,8 @@ TEST(DemModel, AutoTimeStepIsStableWithDampingAndFriction) {
 // beams the first one broke.
 struct Comparison {
   long first_difference;
-  std::size_t broken;        // beams the first simulation broke
-  std::size_t contacts;      // most contacts the second one saw at an evaluation
+  std::size_t broken;    // beams the first simulation broke
+  std::size_t contacts;  // most contacts the second one saw at an evaluation
 };
 Comparison compare(const CellMesh& mesh, const frac::dem::DemScene& a, const frac::dem::DemScene& b, int steps) {
   frac::dem::Simulation sa(mesh, a), sb(mesh, b);
@@ -557,8 +565,8 @@ Comparison compare(const CellMesh& mesh, const frac::dem::DemScene& a, const fra
 // The explosion of a 200-cell disc, 800 steps of 1e-6 s: the kick, contacts everywhere, beams breaking
 // from the first steps, damping on.
 constexpr int kSteps = 800;
-const std::vector<std::pair<std::string, std::string>> kBusy{{"stop.t_max", "8e-4"}, {"physics.damping", "on"},
-                                                            {"material.gamma_n", "2e3"}};
+const std::vector<std::pair<std::string, std::string>> kBusy{
+    {"stop.t_max", "8e-4"}, {"physics.damping", "on"}, {"material.gamma_n", "2e3"}};
 
 std::vector<std::pair<std::string, std::string>> with(std::vector<std::pair<std::string, std::string>> base,
                                                       const std::vector<std::pair<std::string, std::string>>& more) {
@@ -609,24 +617,27 @@ TEST(DemModel, TermsThatAreOffAreNeverCalled) {
 TEST(DemModel, FrictionWithZeroMuEqualsFrictionOff) {
   const CellMesh mesh = disc_mesh(200, 9);
   const auto off = load_scene("explosion", kBusy);
-  const auto on = load_scene("explosion", with(kBusy, {{"physics.friction", "on"}, {"material.friction", "0"},
-                                                      {"material.gamma_t", "2e3"}}));
+  const auto on = load_scene(
+      "explosion", with(kBusy, {{"physics.friction", "on"}, {"material.friction", "0"}, {"material.gamma_t", "2e3"}}));
   const Comparison c = compare(mesh, off, on, kSteps);
   EXPECT_EQ(c.first_difference, -1);
   EXPECT_GT(c.broken, 10u) << "the run should break beams";
   EXPECT_GT(c.contacts, 100u) << "the run should have contacts";
   // A nonzero μ does change it (the comparison can see friction at all).
-  const auto mu = load_scene("explosion", with(kBusy, {{"physics.friction", "on"}, {"material.friction", "0.3"},
-                                                      {"material.gamma_t", "2e3"}}));
+  const auto mu =
+      load_scene("explosion",
+                 with(kBusy, {{"physics.friction", "on"}, {"material.friction", "0.3"}, {"material.gamma_t", "2e3"}}));
   EXPECT_NE(compare(mesh, off, mu, kSteps).first_difference, -1);
 }
 
 TEST(DemModel, DampingWithZeroGammaEqualsDampingOff) {
   const CellMesh mesh = disc_mesh(200, 9);
   const auto off = load_scene("explosion", {{"stop.t_max", "8e-4"}});
-  const auto on = load_scene("explosion", {{"stop.t_max", "8e-4"}, {"physics.damping", "on"}, {"material.gamma_n", "0"}});
+  const auto on =
+      load_scene("explosion", {{"stop.t_max", "8e-4"}, {"physics.damping", "on"}, {"material.gamma_n", "0"}});
   EXPECT_EQ(compare(mesh, off, on, kSteps).first_difference, -1);
-  const auto some = load_scene("explosion", {{"stop.t_max", "8e-4"}, {"physics.damping", "on"}, {"material.gamma_n", "1e3"}});
+  const auto some =
+      load_scene("explosion", {{"stop.t_max", "8e-4"}, {"physics.damping", "on"}, {"material.gamma_n", "1e3"}});
   EXPECT_NE(compare(mesh, off, some, kSteps).first_difference, -1);
 }
 
@@ -637,7 +648,8 @@ TEST(DemModel, DampingWithZeroGammaEqualsDampingOff) {
 // refuses a modulus of 0, which no solid has: the model's material is set directly.)
 TEST(DemModel, ContactsWithZeroModulusEqualContactsOff) {
   const CellMesh mesh = disc_mesh(200, 9);
-  for (const auto& [integrator, dt] : {std::pair{"gear5", "1e-6"}, std::pair{"verlet", "1e-6"}, std::pair{"gear5", "auto"}}) {
+  for (const auto& [integrator, dt] :
+       {std::pair{"gear5", "1e-6"}, std::pair{"verlet", "1e-6"}, std::pair{"gear5", "auto"}}) {
     const std::vector<std::pair<std::string, std::string>> base{
         {"stop.t_max", "8e-4"}, {"integrator.kind", integrator}, {"integrator.dt", dt}};
     const auto off = load_scene("explosion", with(base, {{"physics.contacts", "off"}}));
@@ -659,17 +671,19 @@ TEST(DemModel, ContactsWithZeroModulusEqualContactsOff) {
 TEST(DemModel, BreakingWithUnreachableThresholdsEqualsBreakingOff) {
   const CellMesh mesh = disc_mesh(200, 9);
   const auto off = load_scene("explosion", {{"stop.t_max", "8e-4"}, {"physics.breaking", "off"}});
-  const auto on = load_scene("explosion", {{"stop.t_max", "8e-4"}, {"material.t_eps", "1e300"},
-                                           {"material.t_theta_deg", "1e300"}});
+  const auto on =
+      load_scene("explosion", {{"stop.t_max", "8e-4"}, {"material.t_eps", "1e300"}, {"material.t_theta_deg", "1e300"}});
   EXPECT_EQ(compare(mesh, off, on, kSteps).first_difference, -1);
-  const auto brittle_off = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"physics.breaking", "off"},
-                                                    {"material.t_eps", "1e-9"}, {"material.t_theta_deg", "1e-9"}});
+  const auto brittle_off = load_scene("explosion", {{"stop.t_max", "2e-4"},
+                                                    {"physics.breaking", "off"},
+                                                    {"material.t_eps", "1e-9"},
+                                                    {"material.t_theta_deg", "1e-9"}});
   frac::dem::Simulation sim(mesh, brittle_off);
   frac::Progress progress("test", true);
   EXPECT_EQ(sim.run(progress).broken, 0);
   EXPECT_EQ(sim.model.beams().intact_count(), sim.model.beams().size());
-  const auto brittle_on = load_scene("explosion", {{"stop.t_max", "2e-4"}, {"material.t_eps", "1e-9"},
-                                                   {"material.t_theta_deg", "1e-9"}});
+  const auto brittle_on =
+      load_scene("explosion", {{"stop.t_max", "2e-4"}, {"material.t_eps", "1e-9"}, {"material.t_theta_deg", "1e-9"}});
   frac::dem::Simulation sim_on(mesh, brittle_on);
   EXPECT_GT(sim_on.run(progress).broken, 100);
 }
@@ -794,7 +808,8 @@ TEST(DemModel, ExactStartMakesGear5FifthOrderOnTheSmoothProblem) {
   // Final positions (x, y) after n0·2^level steps of bound/2^level: every run ends at the same time.
   auto final_q = [&](const std::string& kind, const std::string& start, int level, int* evaluations = nullptr) {
     const frac::dem::DemScene d = scene_for(kind, start, 0.999 * bound / (1 << level), n0 << level);
-    EXPECT_EQ(d.integrator.start, start == "exact" ? frac::dynamics::StartKind::exact : frac::dynamics::StartKind::zero);
+    EXPECT_EQ(d.integrator.start,
+              start == "exact" ? frac::dynamics::StartKind::exact : frac::dynamics::StartKind::zero);
     frac::dem::Simulation sim(mesh, d);
     frac::Progress progress("test", true);
     const auto summary = sim.run(progress);
@@ -813,9 +828,10 @@ TEST(DemModel, ExactStartMakesGear5FifthOrderOnTheSmoothProblem) {
   const double z0 = rms(final_q("gear5", "zero", 0), ref), z1 = rms(final_q("gear5", "zero", 1), ref);
   const double e0 = rms(final_q("gear5", "exact", 0), ref), e1 = rms(final_q("gear5", "exact", 1), ref);
   const double pz = std::log2(z0 / z1), pe = std::log2(e0 / e1);
-  std::printf("[ start    ] pulse, beams only, 100 cells: gear5 zero start %.3g -> %.3g m (order %.2f), exact start "
-              "%.3g -> %.3g m (order %.2f); the exact start took %d force evaluations\n",
-              z0, z1, pz, e0, e1, pe, evaluations);
+  std::printf(
+      "[ start    ] pulse, beams only, 100 cells: gear5 zero start %.3g -> %.3g m (order %.2f), exact start "
+      "%.3g -> %.3g m (order %.2f); the exact start took %d force evaluations\n",
+      z0, z1, pz, e0, e1, pe, evaluations);
   EXPECT_NEAR(pz, 2.0, 0.3);
   EXPECT_NEAR(pe, 5.0, 0.6);
   EXPECT_LT(e0, 1e-2 * z0);
@@ -1139,7 +1155,8 @@ TEST(DemModel, EveryBeamKeepsItsConstantsAndStrainWhenBroken) {
     const Vec2 d0 = mesh.centroid[j] - mesh.centroid[i];
     const double l0 = d0.norm();
     EXPECT_EQ(beams.rest_length(b), l0) << "beam " << b;
-    const auto k = frac::dem::beam_stiffness(l0, mesh.beam_section[b], mat.thickness, mat.beam_modulus, mat.shear_ratio);
+    const auto k =
+        frac::dem::beam_stiffness(l0, mesh.beam_section[b], mat.thickness, mat.beam_modulus, mat.shear_ratio);
     EXPECT_EQ(beams.stiffness(b).alpha, k.alpha) << "beam " << b;
     EXPECT_EQ(beams.stiffness(b).delta, k.delta) << "beam " << b;
     const auto r = frac::dem::beam_response(q[j] - q[i], q[n + j] - q[n + i], d0.x() / l0, d0.y() / l0, q[2 * n + i],

@@ -14,22 +14,22 @@
 #include <string>
 
 #include "analysis/fragments.hpp"
+#include "analysis/fragments_io.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "mesh_test_support.hpp"
-#include "test_support.hpp"
 #include "core/rng.hpp"
-#include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 #include "io/run_io.hpp"
 #include "mesh/random_lattice.hpp"
+#include "mesh_test_support.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;
-using frac::test::temp_dir;
 using analysis::CellState;
 using analysis::Fragments;
+using frac::test::temp_dir;
 
 namespace {
 
@@ -90,7 +90,7 @@ State random_state(std::uint64_t seed, double broken = 0.5) {
   for (auto& m : s.mass) m *= 25.0 * rng.uniform(0.5, 1.5);
   for (auto& i : s.inertia) i *= 25.0 * rng.uniform(0.5, 1.5);
   for (auto& x : s.position) x += rng.uniform(-0.01, 0.01) + 3.0;  // away from the origin
-  for (auto& v : s.velocity) v = rng.uniform(-5.0, 5.0) + 2.0;      // a net drift
+  for (auto& v : s.velocity) v = rng.uniform(-5.0, 5.0) + 2.0;     // a net drift
   for (auto& w : s.angular_velocity) w = rng.uniform(-50.0, 50.0);
   for (auto& f : s.intact) f = rng.uniform() < broken ? 0 : 1;
   return s;
@@ -276,7 +276,8 @@ TEST(Fragments, LabelsAreTheComponentsOfTheIntactBeams) {
     for (auto id : f.cell_fragment) ++count[id];
     EXPECT_EQ(count, f.cell_count);
     EXPECT_TRUE(std::is_sorted(f.mass.begin(), f.mass.end(), std::greater<>()));
-    for (std::size_t j = 0; j < f.fragments(); ++j) EXPECT_EQ(f.cell_fragment[f.first_cell[j]], static_cast<std::int64_t>(j));
+    for (std::size_t j = 0; j < f.fragments(); ++j)
+      EXPECT_EQ(f.cell_fragment[f.first_cell[j]], static_cast<std::int64_t>(j));
   }
 }
 
@@ -619,7 +620,8 @@ TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
   };
   std::vector<std::size_t> order(b);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return renumbered_pair(x) < renumbered_pair(y); });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t x, std::size_t y) { return renumbered_pair(x) < renumbered_pair(y); });
   for (std::size_t rank = 0; rank < b; ++rank) q[order[rank]] = static_cast<std::int64_t>(rank);
   mesh::CellMesh r = m;
   r.vertex.clear();
@@ -691,7 +693,9 @@ TEST(FragmentsIo, IndependentOfNumberingThroughRunFiles) {
 
 TEST(FragmentsIo, RefusesIntactFlagsOtherThanZeroOrOne) {
   const auto dir = temp_dir("intact");
-  const std::string path = write_grid_run(dir, [](int k, io::BodyFrame& f) { if (k == 1) f.intact[2] = 7; });
+  const std::string path = write_grid_run(dir, [](int k, io::BodyFrame& f) {
+    if (k == 1) f.intact[2] = 7;
+  });
   const io::Group root = io::open_input(path);
   const io::RunInfo info = analysis::read_dem_run_info(root);
   EXPECT_NO_THROW(analysis::read_fragment_input(root, info, 0));
@@ -711,13 +715,21 @@ TEST(FragmentsIo, RefusesFrameTimesAndStepsThatAreNegativeOrDecrease) {
     return what.rfind(path + ":/particles/cells/position/", 0) == 0 ? what.substr(path.size()) : what;
   };
   const char* times = " (frame times must be finite, >= 0 and non-decreasing)";
-  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 1) f.time = -1; }),
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) {
+              if (k == 1) f.time = -1;
+            }),
             ":/particles/cells/position/time: frame 1: t = -1 s after 0 s" + std::string(times));
-  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 0) f.time = std::numeric_limits<double>::quiet_NaN(); }),
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) {
+              if (k == 0) f.time = std::numeric_limits<double>::quiet_NaN();
+            }),
             ":/particles/cells/position/time: frame 0: t = nan s" + std::string(times));
-  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 2) f.time = 0.05; }),
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) {
+              if (k == 2) f.time = 0.05;
+            }),
             ":/particles/cells/position/time: frame 2: t = 0.05 s after 0.1 s" + std::string(times));
-  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) { if (k == 2) f.step = 5; }),
+  EXPECT_EQ(refusal([](int k, io::BodyFrame& f) {
+              if (k == 2) f.step = 5;
+            }),
             ":/particles/cells/position/step: frame 2: step 5 after 10 (frame steps must be >= 0 and non-decreasing)");
   EXPECT_EQ(refusal([](int, io::BodyFrame&) {}), "(no error)");
   fs::remove_all(dir);

@@ -18,8 +18,8 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "geometry/overlap.hpp"
-#include "geometry/separation.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/separation.hpp"
 #include "mesh/random_lattice.hpp"
 
 namespace {
@@ -90,8 +90,8 @@ ContactGeometry overlap(const Polygon& pi, const Polygon& pj, double g = 1.0) {
 void expect_same_pair(const Vec2& a, const Vec2& b, const Vec2& p, const Vec2& q, double tol) {
   const bool direct = (a - p).norm() <= tol && (b - q).norm() <= tol;
   const bool swapped = (a - q).norm() <= tol && (b - p).norm() <= tol;
-  EXPECT_TRUE(direct || swapped) << "got (" << a.transpose() << ") (" << b.transpose() << "), want ("
-                                 << p.transpose() << ") (" << q.transpose() << ")";
+  EXPECT_TRUE(direct || swapped) << "got (" << a.transpose() << ") (" << b.transpose() << "), want (" << p.transpose()
+                                 << ") (" << q.transpose() << ")";
 }
 
 double distance_to_boundary(const Vec2& x, const Polygon& p) {
@@ -246,8 +246,8 @@ TEST(Polygon, ClipHalfPlane) {
 TEST(Polygon, ClipConvexBasicCases) {
   const Polygon a = rect(0, 0, 1, 1);
   EXPECT_NEAR(geo::signed_area(geo::clip_convex(a, rect(0.5, 0.25, 1, 1))), 0.375, 1e-15);
-  EXPECT_TRUE(geo::clip_convex(a, rect(2, 0, 1, 1)).empty());                     // disjoint
-  EXPECT_TRUE(geo::clip_convex(a, rect(1, 0, 1, 1)).empty());                     // shared edge
+  EXPECT_TRUE(geo::clip_convex(a, rect(2, 0, 1, 1)).empty());                          // disjoint
+  EXPECT_TRUE(geo::clip_convex(a, rect(1, 0, 1, 1)).empty());                          // shared edge
   EXPECT_NEAR(geo::signed_area(geo::clip_convex(a, rect(-1, -1, 3, 3))), 1.0, 1e-15);  // inside
   EXPECT_NEAR(geo::signed_area(geo::clip_convex(rect(-1, -1, 3, 3), a)), 1.0, 1e-15);  // contains
   // Triangle (0,0) (2,0) (0,2) against [0.5,1.5]x[0,1]: 0.5 (x < 1) + 0.375 (x > 1) = 0.875.
@@ -384,9 +384,9 @@ TEST(Overlap, OneInsideTheOther) {
   }
   // Inside and touching: in a corner (two shared edges), and with a vertex on the outer boundary.
   const Polygon big = rect(0, 0, 1, 1);
-  for (const Polygon& small : {rect(0, 0, 0.3, 0.2), rect(0.7, 0.8, 0.3, 0.2),
-                               Polygon{Vec2(0.5, 0.0), Vec2(0.7, 0.5), Vec2(0.3, 0.5)},
-                               Polygon{Vec2(0.2, 0.2), Vec2(1.0, 0.5), Vec2(0.2, 0.8)}}) {
+  for (const Polygon& small :
+       {rect(0, 0, 0.3, 0.2), rect(0.7, 0.8, 0.3, 0.2), Polygon{Vec2(0.5, 0.0), Vec2(0.7, 0.5), Vec2(0.3, 0.5)},
+        Polygon{Vec2(0.2, 0.2), Vec2(1.0, 0.5), Vec2(0.2, 0.8)}}) {
     const double a = geo::signed_area(small);
     for (int swap = 0; swap < 2; ++swap) {
       const auto r = swap ? overlap(small, big) : overlap(big, small);
@@ -746,11 +746,13 @@ namespace {
 
 // Whether two contact geometries agree in every field, bit for bit.
 ::testing::AssertionResult same_bits(const ContactGeometry& a, const ContactGeometry& b) {
-  if (a.kind != b.kind || a.area != b.area || a.crossings != b.crossings || a.distinct_crossings != b.distinct_crossings)
+  if (a.kind != b.kind || a.area != b.area || a.crossings != b.crossings ||
+      a.distinct_crossings != b.distinct_crossings)
     return ::testing::AssertionFailure() << "kind, area or crossings differ: area " << a.area << " against " << b.area;
   for (const auto& [u, v] : {std::pair{a.p1, b.p1}, {a.p2, b.p2}, {a.point, b.point}, {a.normal, b.normal}}) {
     if (u.x() != v.x() || u.y() != v.y())
-      return ::testing::AssertionFailure() << "(" << u.x() << ", " << u.y() << ") against (" << v.x() << ", " << v.y() << ")";
+      return ::testing::AssertionFailure()
+             << "(" << u.x() << ", " << u.y() << ") against (" << v.x() << ", " << v.y() << ")";
   }
   return ::testing::AssertionSuccess();
 }
@@ -797,7 +799,8 @@ TEST(Overlap, HintGivesTheSameResultBitForBit) {
     for (std::size_t k = 0; k < n; ++k) {
       centre[k] = mesh.centroid[k] + jiggle * g * Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
       const double phi = jiggle * rng.uniform(-1, 1), c = std::cos(phi), s = std::sin(phi);
-      for (const Vec2& p : mesh.polygon(k)) world[k].push_back(centre[k] + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+      for (const Vec2& p : mesh.polygon(k))
+        world[k].push_back(centre[k] + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
     }
     for (const auto& beam : mesh.beam) {
       const auto i = static_cast<std::size_t>(beam[0]), j = static_cast<std::size_t>(beam[1]);
@@ -830,7 +833,8 @@ TEST(Overlap, HintGivesTheSameResultOnSharedEdges) {
   const Polygon base_i = rect(0, 0, 1, 1);
   int shared_runs = 0;
   for (const double turn : {0.0, 1e-13, 1e-10, 1e-7, 5e-4, 2e-3, 1e-2}) {
-    for (const Polygon& base_j : {rect(0.9, 0, 1, 1), rect(0.5, 0, 1, 1), rect(0, 0.99, 1, 1), rect(0.3, 0.999, 1, 1)}) {
+    for (const Polygon& base_j :
+         {rect(0.9, 0, 1, 1), rect(0.5, 0, 1, 1), rect(0, 0.99, 1, 1), rect(0.3, 0.999, 1, 1)}) {
       for (int trial = 0; trial < 20; ++trial) {
         // The pair turned and moved as a whole, then j turned by `turn` about the middle of the overlap.
         const double angle = trial == 0 ? 0.0 : rng.uniform(-3, 3);

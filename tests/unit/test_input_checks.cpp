@@ -126,16 +126,22 @@ TEST(OptionParsing, ConfigFileValuesAreCheckedToo) {
   const fs::path path = fs::temp_directory_path() / ("fracture-test-config-" + make_uuid().substr(0, 8) + ".cfg");
   std::ofstream(path) << "level = inf\n";
   Tool t;
-  EXPECT_EQ(error_of([&] { t.parse({"in.h5", "--config", path.c_str()}); }),
+  EXPECT_EQ(error_of([&] {
+              t.parse({"in.h5", "--config", path.c_str()});
+            }),
             "--config " + path.string() + ": --level: must be a finite number, got 'inf'");
   fs::remove(path);
 }
 
 TEST(OptionParsing, EachSceneKeyOnceOnTheCommandLineAndOnceInTheConfigFile) {
-  EXPECT_EQ(error_of([] { scene_keys({"in.h5", "--material.t_eps", "0.02", "--material.t_eps=0.03"}); }),
+  EXPECT_EQ(error_of([] {
+              scene_keys({"in.h5", "--material.t_eps", "0.02", "--material.t_eps=0.03"});
+            }),
             "--material.t_eps: given twice on the command line ('0.02', then '0.03')");
   const fs::path twice = temp_file("twice.cfg", "material.t_eps = 0.02\n[material]\nt_eps = 0.03\n");
-  EXPECT_EQ(error_of([&] { scene_keys({"in.h5", "--config", twice.c_str()}); }),
+  EXPECT_EQ(error_of([&] {
+              scene_keys({"in.h5", "--config", twice.c_str()});
+            }),
             "--config " + twice.string() + ": key 'material.t_eps' is given twice");
   // In the file and on the command line: the command line's comes last, and wins.
   const fs::path once = temp_file("once.cfg", "[material]\nt_eps = 0.02\n");
@@ -151,18 +157,26 @@ TEST(OptionParsing, EachSceneKeyOnceOnTheCommandLineAndOnceInTheConfigFile) {
 TEST(OptionParsing, TheConfigFileIsOneRegularTextFile) {
   const fs::path nested = temp_file("nested.cfg", "config = other.cfg\n");
   Tool t;
-  EXPECT_EQ(error_of([&] { t.parse({"in.h5", "--config", nested.c_str()}); }),
+  EXPECT_EQ(error_of([&] {
+              t.parse({"in.h5", "--config", nested.c_str()});
+            }),
             "--config " + nested.string() + ": 'config' cannot be set inside a config file (give one --config)");
   const std::string dir = nested.parent_path().string();
   Tool u;
-  EXPECT_EQ(error_of([&] { u.parse({"in.h5", "--config", dir.c_str()}); }),
+  EXPECT_EQ(error_of([&] {
+              u.parse({"in.h5", "--config", dir.c_str()});
+            }),
             "--config " + dir + ": is a directory, not a file of 'key = value' lines");
   Tool v;
-  EXPECT_EQ(error_of([&] { v.parse({"in.h5", "--config", "/dev/null"}); }),
+  EXPECT_EQ(error_of([&] {
+              v.parse({"in.h5", "--config", "/dev/null"});
+            }),
             "--config /dev/null: not a regular file of 'key = value' lines");
   const fs::path binary = temp_file("binary.cfg", std::string("level = 1\n\0\x01", 12));
   Tool w;
-  EXPECT_NE(error_of([&] { w.parse({"in.h5", "--config", binary.c_str()}); }).find("holds a NUL byte"),
+  EXPECT_NE(error_of([&] {
+              w.parse({"in.h5", "--config", binary.c_str()});
+            }).find("holds a NUL byte"),
             std::string::npos);
   fs::remove_all(nested.parent_path());
   fs::remove_all(binary.parent_path());
@@ -172,7 +186,8 @@ TEST(OptionCheck, IntervalsSayTheirEnds) {
   EXPECT_EQ(error_of([] { check_in(2, "--significance", Interval::open(0, 1)); }),
             "--significance: must lie in (0, 1), got 2");
   EXPECT_EQ(error_of([] { check_in(0, "--x", Interval::open_closed(0, 5)); }), "--x: must lie in (0, 5], got 0");
-  EXPECT_EQ(error_of([] { check_in(std::nan(""), "--x", Interval::closed(0, 5)); }), "--x: must lie in [0, 5], got nan");
+  EXPECT_EQ(error_of([] { check_in(std::nan(""), "--x", Interval::closed(0, 5)); }),
+            "--x: must lie in [0, 5], got nan");
   EXPECT_EQ(error_of([] { check_in(5, "--x", Interval::closed(0, 5)); }), "(no error)");
   EXPECT_FALSE(Interval::closed(0, 1).contains(std::numeric_limits<double>::infinity()));
 }
@@ -204,27 +219,42 @@ TEST(SceneChecks, EmptySceneFileAndMissingKindAreRefused) {
 }
 
 TEST(SceneChecks, DemValuesBeyondThePhysicalLimits) {
-  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.density", "1e9"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("explosion", {{"material.density", "1e9"}});
+            }),
             "--material.density = '1e9': must lie in (0, 100000]");
-  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.beam_modulus", "1e20"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("explosion", {{"material.beam_modulus", "1e20"}});
+            }),
             "--material.beam_modulus = '1e20': must lie in (0, 1e+13]");
-  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.gamma_n", "1e12"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("explosion", {{"material.gamma_n", "1e12"}});
+            }),
             "--material.gamma_n = '1e12': must lie in [0, 1e+09]");
-  EXPECT_EQ(error_of([] { dem_scene("impact", {{"loading.impact_speed", "1e6"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("impact", {{"loading.impact_speed", "1e6"}});
+            }),
             "--loading.impact_speed = '1e6': must lie in (0, 100000]");
-  EXPECT_NE(error_of([] { dem_scene("explosion", {{"stop.steps_without_breaking", "-1"}}); })
-                .find("stop.steps_without_breaking must not be negative"),
+  EXPECT_NE(error_of([] {
+              dem_scene("explosion", {{"stop.steps_without_breaking", "-1"}});
+            }).find("stop.steps_without_breaking must not be negative"),
             std::string::npos);
   // Out-of-reach thresholds are a way to switch breaking off, not an error.
   EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.t_eps", "1e300"}}); }), "(no error)");
 }
 
 TEST(SceneChecks, ModuliOfZeroAndStepsThatNeverReachTheEnd) {
-  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.beam_modulus", "0"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("explosion", {{"material.beam_modulus", "0"}});
+            }),
             "--material.beam_modulus = '0': must be positive");
-  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"material.grain_modulus", "0"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("explosion", {{"material.grain_modulus", "0"}});
+            }),
             "--material.grain_modulus = '0': must be positive");
-  EXPECT_EQ(error_of([] { dem_scene("explosion", {{"integrator.dt", "1e-300"}}); }),
+  EXPECT_EQ(error_of([] {
+              dem_scene("explosion", {{"integrator.dt", "1e-300"}});
+            }),
             "--integrator.dt = '1e-300': 5e+297 steps to reach stop.t_max = 0.005 s, more than 1e+12");
   EXPECT_EQ(error_of([] { dem_scene("explosion", {{"integrator.dt", "1e-14"}}); }), "(no error)");  // 5e11 steps
   const mesh::NodeMesh m = mesh::make_triangular_lattice({20, 10, 1e-3, "x", 0.0});
@@ -235,16 +265,22 @@ TEST(SceneChecks, ModuliOfZeroAndStepsThatNeverReachTheEnd) {
 
 TEST(SceneChecks, KicksFasterThanAnySolidAreRefused) {
   const mesh::CellMesh m = block();
-  EXPECT_NE(error_of([&] { dem::Simulation(m, dem_scene("explosion", {{"loading.energy", "1e300"}})); })
-                .find("loading.energy = 1e+300 J: kicks cell "),
+  EXPECT_NE(error_of([&] {
+              dem::Simulation(m, dem_scene("explosion", {{"loading.energy", "1e300"}}));
+            }).find("loading.energy = 1e+300 J: kicks cell "),
             std::string::npos);
-  EXPECT_NE(error_of([&] { dem::Simulation(m, dem_scene("impact", {{"loading.impact_energy", "1e12"}})); })
-                .find("loading.impact_energy = 1e+12 J: kicks cell "),
+  EXPECT_NE(error_of([&] {
+              dem::Simulation(m, dem_scene("impact", {{"loading.impact_energy", "1e12"}}));
+            }).find("loading.impact_energy = 1e+12 J: kicks cell "),
             std::string::npos);
   EXPECT_EQ(error_of([&] { dem::Simulation(m, dem_scene("explosion", {{"loading.energy", "500"}})); }), "(no error)");
-  EXPECT_EQ(error_of([&] { dem::Simulation(m, dem_scene("uniaxial", {{"loading.layer_depth", "0.06"}})); }),
+  EXPECT_EQ(error_of([&] {
+              dem::Simulation(m, dem_scene("uniaxial", {{"loading.layer_depth", "0.06"}}));
+            }),
             "loading.layer_depth = 0.06 m: the boundary layers would meet (the sample is 0.1 x 0.1 m)");
-  EXPECT_EQ(error_of([&] { dem::Simulation(m, dem_scene("impact", {{"loading.impact_width", "0.2"}})); }),
+  EXPECT_EQ(error_of([&] {
+              dem::Simulation(m, dem_scene("impact", {{"loading.impact_width", "0.2"}}));
+            }),
             "loading.impact_width = 0.2 m: wider than the sample (0.1 m)");
 }
 
@@ -254,12 +290,16 @@ TEST(SceneChecks, RubberValuesBeyondTheSheetOrTheLimits) {
     Scene s = Scene::parse(text, "r.ini");
     rubber::read_rubber_scene(s, m);
   };
-  EXPECT_EQ(error_of([&] { read("[loading]\nstretch_y = 1e6\n"); }), "r.ini: loading.stretch_y = '1e6': must lie in (0, 100]");
-  EXPECT_EQ(error_of([&] { read("[initial]\nnoise = 1e7\n"); }), "r.ini: initial.noise = '1e7': must lie in [0, 100000]");
+  EXPECT_EQ(error_of([&] { read("[loading]\nstretch_y = 1e6\n"); }),
+            "r.ini: loading.stretch_y = '1e6': must lie in (0, 100]");
+  EXPECT_EQ(error_of([&] { read("[initial]\nnoise = 1e7\n"); }),
+            "r.ini: initial.noise = '1e7': must lie in [0, 100000]");
   EXPECT_EQ(error_of([&] { read("[material]\na = 1e20\n"); }), "r.ini: material.a = '1e20': must lie in (0, 1e+10]");
   // The pulse's amplitude must fit on the 19.5 x 7.8 mm sheet.
-  EXPECT_EQ(error_of([&] { read("[pulse]\namplitude = 1\n"); }), "r.ini: pulse.amplitude = '1': must lie in [0, 0.0195]");
-  EXPECT_EQ(error_of([&] { read("[law]\ncutoff_length = 10\n"); }), "r.ini: law.cutoff_length = '10': must lie in (0, 1]");
+  EXPECT_EQ(error_of([&] { read("[pulse]\namplitude = 1\n"); }),
+            "r.ini: pulse.amplitude = '1': must lie in [0, 0.0195]");
+  EXPECT_EQ(error_of([&] { read("[law]\ncutoff_length = 10\n"); }),
+            "r.ini: law.cutoff_length = '10': must lie in (0, 1]");
   EXPECT_EQ(error_of([&] { read("[loading]\nstretch_y = 3\n"); }), "(no error)");
 }
 
@@ -271,11 +311,14 @@ TEST(Runaway, NamesTheStepAndTheBody) {
   q[1] = 500;  // within 1000 sizes
   EXPECT_EQ(error_of([&] { guard.check(q, 7, 1e-3); }), "(no error)");
   q[2 + 3] = -2e3;  // cell 2, y
-  EXPECT_EQ(error_of([&] { guard.check(q, 7, 1e-3); }).rfind("runaway at step 7 (t = 0.001 s): cell 2 is at (0, -2000) m", 0), 0u);
+  EXPECT_EQ(
+      error_of([&] { guard.check(q, 7, 1e-3); }).rfind("runaway at step 7 (t = 0.001 s): cell 2 is at (0, -2000) m", 0),
+      0u);
   q[2 + 3] = 1;
   q[0] = std::nan("");
-  EXPECT_EQ(error_of([&] { guard.check(q, 8, 2e-3); }).rfind("runaway at step 8 (t = 0.002 s): cell 0 is at (nan, 0) m", 0),
-            0u);
+  EXPECT_EQ(
+      error_of([&] { guard.check(q, 8, 2e-3); }).rfind("runaway at step 8 (t = 0.002 s): cell 0 is at (nan, 0) m", 0),
+      0u);
 }
 
 TEST(PowerlawOptions, RangesNamedBeforeAnyInputIsRead) {
@@ -289,13 +332,15 @@ TEST(PowerlawOptions, RangesNamedBeforeAnyInputIsRead) {
   EXPECT_EQ(error_of([&] { analysis::check_fit_options(bad); }).rfind("--threads: must lie in [0, ", 0), 0u);
   bad = opt;
   bad.bootstrap = 2000000000;
-  EXPECT_EQ(error_of([&] { analysis::check_fit_options(bad); }), "--bootstrap: must lie in [0, 1000000], got 2000000000");
+  EXPECT_EQ(error_of([&] { analysis::check_fit_options(bad); }),
+            "--bootstrap: must lie in [0, 1000000], got 2000000000");
   bad = opt;
   bad.bins_per_decade = std::numeric_limits<double>::infinity();
   EXPECT_EQ(error_of([&] { analysis::check_fit_options(bad); }), "--bins-per-decade: must lie in (0, 1000], got inf");
   bad = opt;
   bad.logbin_min = -1;
-  EXPECT_EQ(error_of([&] { analysis::check_fit_options(bad); }), "--logbin-min: must be xmin, all or a number >= 0, got -1");
+  EXPECT_EQ(error_of([&] { analysis::check_fit_options(bad); }),
+            "--logbin-min: must be xmin, all or a number >= 0, got -1");
 }
 
 TEST(DemRun, AFrameIntervalBelowTheTimesResolutionTakesAFrameAStep) {

@@ -199,10 +199,11 @@ TEST(Integrator, ParseKind) {
 TEST(Integrator, Gear5StabilityLimit) {
   const double limit = frac::dynamics::stability_limit(IntegratorKind::gear5);
   const double measured = measured_limit(IntegratorKind::gear5, 0.5 * limit, 2.0 * limit);
-  std::printf("[ stability] gear5: stability_limit = %.4f, measured edge = %.4f; amplitude growth rate per step at "
-              "0.95 edge %.2e, 0.99 limit %.2e, 1.05 limit %.2e\n",
-              limit, measured, growth_rate(IntegratorKind::gear5, 0.95 * measured),
-              growth_rate(IntegratorKind::gear5, 0.99 * limit), growth_rate(IntegratorKind::gear5, 1.05 * limit));
+  std::printf(
+      "[ stability] gear5: stability_limit = %.4f, measured edge = %.4f; amplitude growth rate per step at "
+      "0.95 edge %.2e, 0.99 limit %.2e, 1.05 limit %.2e\n",
+      limit, measured, growth_rate(IntegratorKind::gear5, 0.95 * measured),
+      growth_rate(IntegratorKind::gear5, 0.99 * limit), growth_rate(IntegratorKind::gear5, 1.05 * limit));
   EXPECT_TRUE(stable(IntegratorKind::gear5, 0.99 * limit))
       << "gear5 is unstable just below its stated limit: |λ| − 1 = " << growth_rate(IntegratorKind::gear5, 0.99 * limit)
       << " per step at ω·dt = " << 0.99 * limit << "; the measured edge is " << measured;
@@ -420,7 +421,8 @@ class NonlinearDriven final : public System {
   explicit NonlinearDriven(std::size_t n) : index_{n - 2} {}
   void accelerations(double t, std::span<const double> q, std::span<const double> v, std::span<double> a) override {
     for (std::size_t i = 0; i < q.size(); ++i)
-      a[i] = -q[i] * (1 + 0.3 * q[i] * q[i]) - 0.05 * v[i] * std::abs(v[i]) + 0.1 * std::sin(t + static_cast<double>(i));
+      a[i] =
+          -q[i] * (1 + 0.3 * q[i] * q[i]) - 0.05 * v[i] * std::abs(v[i]) + 0.1 * std::sin(t + static_cast<double>(i));
   }
   std::span<const std::size_t> prescribed() const override { return index_; }
   void prescribe(double t, std::span<double> q, std::span<double> v, std::span<double> a) const override {

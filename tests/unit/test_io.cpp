@@ -9,12 +9,12 @@
 
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "test_support.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
 #include "io/series.hpp"
 #include "mesh/triangular_lattice.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace frac;
@@ -353,8 +353,9 @@ TEST(Io, NodeCountsFromTheFileCannotOverflow) {
     io::read_node_mesh_as_stored(io::open_input(path));
     FAIL() << "accepted nx * ny that overflows";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("reference_position: has 12 rows, but the attributes say nx = 4611686018427387904"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("reference_position: has 12 rows, but the attributes say nx = 4611686018427387904"),
+        std::string::npos)
         << e.what();
   }
   fs::remove_all(dir);

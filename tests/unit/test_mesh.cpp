@@ -449,7 +449,7 @@ TEST(MeshCheck, NamesEachCellAndBeamFault) {
   EXPECT_EQ(first_failure(frac::mesh::check_cell_mesh(m)), self);
   m = good;
   m.beam_length[3] = 0;
-  EXPECT_NE(first_failure(frac::mesh::check_cell_mesh(m)).find("beam 3 (" ), std::string::npos);
+  EXPECT_NE(first_failure(frac::mesh::check_cell_mesh(m)).find("beam 3 ("), std::string::npos);
   EXPECT_NE(first_failure(frac::mesh::check_cell_mesh(m)).find("0 m is not positive"), std::string::npos);
   // The spacing sets the tolerances: one far from the cells' size would pass anything.
   m = good;

@@ -154,8 +154,17 @@ TEST(Parallel, AllFiniteFindsAnyNonFiniteValue) {
 // OR-ed with them; the largest finite numbers, subnormals, zeros and negative numbers do not.
 TEST(Parallel, NonFiniteBitMarksOnlyNaNAndInfinity) {
   using limits = std::numeric_limits<double>;
-  const std::vector<double> finite{0.0, -0.0, 1.0, -1.0, limits::max(), -limits::max(), limits::min(),
-                                   limits::denorm_min(), -limits::denorm_min(), 1e-310, 0x1.fffffffffffffp1023};
+  const std::vector<double> finite{0.0,
+                                   -0.0,
+                                   1.0,
+                                   -1.0,
+                                   limits::max(),
+                                   -limits::max(),
+                                   limits::min(),
+                                   limits::denorm_min(),
+                                   -limits::denorm_min(),
+                                   1e-310,
+                                   0x1.fffffffffffffp1023};
   const std::vector<double> not_finite{limits::quiet_NaN(), -limits::quiet_NaN(), limits::signaling_NaN(),
                                        limits::infinity(), -limits::infinity()};
   std::uint64_t all = 0;

@@ -12,13 +12,13 @@
 #include <numeric>
 #include <sstream>
 
+#include "analysis/fit_io.hpp"
 #include "analysis/log_histogram.hpp"
 #include "analysis/powerlaw.hpp"
 #include "analysis/powerlaw_continuous.hpp"
 #include "analysis/powerlaw_discrete.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "analysis/fit_io.hpp"
 #include "io/header.hpp"
 #include "io/output_file.hpp"
 
@@ -44,9 +44,7 @@ std::vector<double> body_and_tail(std::size_t n, double alpha, double body, Rng&
 }
 
 // Standard normal by Box-Muller (portable: only frac::Rng and libm).
-double normal(Rng& rng) {
-  return std::sqrt(-2 * std::log1p(-rng.uniform())) * std::cos(2 * M_PI * rng.uniform());
-}
+double normal(Rng& rng) { return std::sqrt(-2 * std::log1p(-rng.uniform())) * std::cos(2 * M_PI * rng.uniform()); }
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -77,7 +75,8 @@ double brute_ks_powerlaw_r(std::vector<double> x, double xmin, const std::functi
     if (v >= xmin) t.push_back(v);
   std::sort(t.begin(), t.end());
   double d = 0;
-  for (std::size_t i = 0; i < t.size(); ++i) d = std::max(d, std::abs(cdf(t[i]) - static_cast<double>(i) / static_cast<double>(t.size())));
+  for (std::size_t i = 0; i < t.size(); ++i)
+    d = std::max(d, std::abs(cdf(t[i]) - static_cast<double>(i) / static_cast<double>(t.size())));
   return d;
 }
 
@@ -191,7 +190,8 @@ TEST(PowerlawInput, TextColumnCommentsAndBadLines) {
     analysis::read_number_column(bad, "t.txt");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("t.txt: 2 lines are not a single number (first: line 2: 'abc')"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("t.txt: 2 lines are not a single number (first: line 2: 'abc')"),
+              std::string::npos)
         << e.what();
   }
 }
@@ -222,7 +222,8 @@ TEST(PowerlawKs, PrunedDistanceEqualsBruteForce) {
   for (int seed = 0; seed < 6; ++seed) {
     Rng rng = replicate_rng(seed, 1, 0);
     auto x = power_law(400, 1.8 + 0.2 * seed, 1.0, rng);
-    if (seed % 2) for (auto& v : x) v = std::round(v * 4) / 4;
+    if (seed % 2)
+      for (auto& v : x) v = std::round(v * 4) / 4;
     const Sample s = make_sample(x);
     for (std::size_t j : {std::size_t{0}, s.distinct() / 5, s.distinct() / 2}) {
       const double xmin = s.value[j];
@@ -230,7 +231,8 @@ TEST(PowerlawKs, PrunedDistanceEqualsBruteForce) {
         const TailFit f = fit_continuous_at(s, j, xmin, kInf, conv);
         ASSERT_TRUE(f.ok);
         const auto cdf = [&](double v) { return continuous_cdf(v, xmin, f.alpha); };
-        const double ref = conv == KsConvention::two_sided ? brute_ks_two_sided(x, xmin, cdf) : brute_ks_powerlaw_r(x, xmin, cdf);
+        const double ref =
+            conv == KsConvention::two_sided ? brute_ks_two_sided(x, xmin, cdf) : brute_ks_powerlaw_r(x, xmin, cdf);
         EXPECT_NEAR(f.ks, ref, 1e-12) << "seed " << seed << " j " << j;
         // A bound below the distance stops early but never reports less than the bound.
         const TailFit g = fit_continuous_at(s, j, xmin, kInf, conv, 0.5 * ref);
@@ -297,7 +299,7 @@ TEST(PowerlawContinuous, ClosedFormMleStandardErrorAndLikelihood) {
   double n = 0, sum = 0;
   for (double v : x)
     if (v >= xmin) n += 1, sum += std::log(v / xmin);
-  EXPECT_NEAR(f.alpha, 1 + n / sum, 1e-12);                    // CSN eq. 3.1
+  EXPECT_NEAR(f.alpha, 1 + n / sum, 1e-12);                          // CSN eq. 3.1
   EXPECT_NEAR(f.alpha_stderr, (f.alpha - 1) / std::sqrt(n), 1e-12);  // CSN eq. 3.2
   EXPECT_EQ(f.n_tail, static_cast<std::int64_t>(n));
   double ll = 0;
@@ -406,7 +408,8 @@ TEST(PowerlawRecovery, KnownExponentsWithinTwoStandardErrors) {
       double sum = 0, se_sum = 0, logbin_sum = 0;
       std::vector<double> xmins;
       for (int k = 0; k < seeds; ++k) {
-        Rng rng = replicate_rng(static_cast<std::uint64_t>(alpha * 100) + 7, static_cast<std::uint64_t>(n), static_cast<std::uint64_t>(k));
+        Rng rng = replicate_rng(static_cast<std::uint64_t>(alpha * 100) + 7, static_cast<std::uint64_t>(n),
+                                static_cast<std::uint64_t>(k));
         const auto x = power_law(static_cast<std::size_t>(n), alpha, 1.0, rng);
         const TailFit f = fit_continuous(make_sample(x), ScanOptions{});
         ASSERT_TRUE(f.ok);
@@ -426,8 +429,10 @@ TEST(PowerlawRecovery, KnownExponentsWithinTwoStandardErrors) {
       EXPECT_GE(in, static_cast<int>(std::ceil(0.75 * seeds))) << "alpha " << alpha << " n " << n;
       EXPECT_NEAR(mean, alpha, 3 * se / std::sqrt(seeds) + 1e-3) << "alpha " << alpha << " n " << n;
       EXPECT_LT(median(xmins), 1.5) << "alpha " << alpha << " n " << n;
-      std::printf("alpha %.1f n %5d: MLE mean %.4f (SE %.4f), within 2 SE %d/%d, median xmin %.3f; log-binned WLS %.4f (bias %+.3f)\n",
-                  alpha, n, mean, se, in, seeds, median(xmins), logbin_sum / seeds, logbin_sum / seeds - alpha);
+      std::printf(
+          "alpha %.1f n %5d: MLE mean %.4f (SE %.4f), within 2 SE %d/%d, median xmin %.3f; log-binned WLS %.4f (bias "
+          "%+.3f)\n",
+          alpha, n, mean, se, in, seeds, median(xmins), logbin_sum / seeds, logbin_sum / seeds - alpha);
     }
   }
   EXPECT_GE(pooled_in, static_cast<int>(0.88 * pooled));
@@ -577,7 +582,8 @@ TEST(PowerlawCompare, CutoffNormalisersAndDiscreteCutoffSamples) {
       for (double kmax : {kInf, 3000.0}) {
         double direct = 0;
         for (double k = 3; k <= std::min(kmax, 1e5); k += 1) direct += std::pow(k, -alpha) * std::exp(-lambda * k);
-        EXPECT_NEAR(log_cutoff_sum(alpha, lambda, 3, kmax), std::log(direct), 1e-7) << alpha << " " << lambda << " " << kmax;
+        EXPECT_NEAR(log_cutoff_sum(alpha, lambda, 3, kmax), std::log(direct), 1e-7)
+            << alpha << " " << lambda << " " << kmax;
       }
     }
   }
@@ -626,7 +632,8 @@ TEST(PowerlawBootstrap, SpreadMatchesRepeatedSamplesAndIncludesXmin) {
   double var = 0;
   for (double a : alphas) var += (a - mean) * (a - mean) / 59;
   const double spread = std::sqrt(var);
-  std::printf("alpha spread over 60 samples %.4f, mean bootstrap std %.4f, mean asymptotic SE %.4f\n", spread, boot, asym);
+  std::printf("alpha spread over 60 samples %.4f, mean bootstrap std %.4f, mean asymptotic SE %.4f\n", spread, boot,
+              asym);
   EXPECT_GT(boot, 0.6 * spread);
   EXPECT_LT(boot, 1.6 * spread);
   EXPECT_GT(boot, asym);
@@ -699,7 +706,8 @@ TEST(LogHistogram, EdgesWidthsAndNormalisation) {
   EXPECT_DOUBLE_EQ(h.center[0], 1.0);
   EXPECT_NEAR(h.center[3], std::sqrt(4.0 * 6.0), 1e-12);
   double total = 0, counted = 0;
-  for (std::size_t b = 0; b < h.size(); ++b) total += h.density[b] * h.width[b], counted += static_cast<double>(h.count[b]);
+  for (std::size_t b = 0; b < h.size(); ++b)
+    total += h.density[b] * h.width[b], counted += static_cast<double>(h.count[b]);
   EXPECT_NEAR(total, 1.0, 1e-12);
   EXPECT_EQ(counted, 13);
   // Continuous widths: edge differences; every value in its bin.
@@ -779,7 +787,8 @@ TEST(LogHistogram, SlopeOfAnExactPowerLawAndItsError) {
   // so the slope is -2.5 to 1e-3 (the last, sparse bins excluded by fit_max). Then with sampling noise, over
   // 30 seeds (n = 3000) the slope scatters by about its reported error: sd of (slope - mean)/stderr in [0.6, 1.6].
   std::vector<double> q(100000);
-  for (std::size_t i = 0; i < q.size(); ++i) q[i] = std::pow(1 - (static_cast<double>(i) + 0.5) / static_cast<double>(q.size()), -1 / 1.5);
+  for (std::size_t i = 0; i < q.size(); ++i)
+    q[i] = std::pow(1 - (static_cast<double>(i) + 0.5) / static_cast<double>(q.size()), -1 / 1.5);
   const auto h = log_histogram(q, {5, false});
   LogSlopeOptions o;
   o.fit_min = 1.0, o.fit_max = 100.0;
@@ -798,7 +807,8 @@ TEST(LogHistogram, SlopeOfAnExactPowerLawAndItsError) {
   }
   const double mean = std::accumulate(slopes.begin(), slopes.end(), 0.0) / 30;
   double z2 = 0;
-  for (int k = 0; k < 30; ++k) z2 += std::pow((slopes[static_cast<std::size_t>(k)] - mean) / errors[static_cast<std::size_t>(k)], 2) / 29;
+  for (int k = 0; k < 30; ++k)
+    z2 += std::pow((slopes[static_cast<std::size_t>(k)] - mean) / errors[static_cast<std::size_t>(k)], 2) / 29;
   EXPECT_GT(std::sqrt(z2), 0.6);
   EXPECT_LT(std::sqrt(z2), 1.6);
 }
@@ -909,7 +919,8 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   EXPECT_EQ(in.n_excluded_min_cells, singles);
   EXPECT_EQ(static_cast<std::int64_t>(in.values.size()) + singles, 400);
   EXPECT_EQ(in.unit, "kg");
-  EXPECT_NEAR(in.mean_cell_mass(), 0.01, 0.01 * 0.05);  // cells of 0.01 kg × U(0.8, 1.2), the largest fragments dominating
+  EXPECT_NEAR(in.mean_cell_mass(), 0.01,
+              0.01 * 0.05);  // cells of 0.01 kg × U(0.8, 1.2), the largest fragments dominating
   const auto counts = analysis::read_fragment_values(root, "cell_count", 0);
   EXPECT_EQ(counts.values.size(), 400u);
   EXPECT_THROW(analysis::read_fragment_values(root, "volume", 0), UsageError);
@@ -954,7 +965,7 @@ TEST(PowerlawFit, FitGroupRoundTripAndFragmentsInput) {
   std::ostringstream text;
   analysis::write_fit_text(text, r, in, "tool=powerlaw-fit version=0");
   EXPECT_EQ(text.str().rfind("# tool=powerlaw-fit version=0\n", 0), 0u);
-  EXPECT_NE(text.str().find("\nalpha " ), std::string::npos);
+  EXPECT_NE(text.str().find("\nalpha "), std::string::npos);
   EXPECT_NE(text.str().find("beta = alpha"), std::string::npos);
   EXPECT_NE(text.str().find("\nn_excluded_min_cells " + std::to_string(singles) + "\n"), std::string::npos);
   fs::remove_all(dir);
@@ -980,7 +991,9 @@ TEST(PowerlawFit, EachInputIsPooledOnce) {
     return "(no error)";
   };
   const std::string dot = (dir / "." / "a.h5").string(), link = (dir / "link.h5").string();
-  EXPECT_EQ(error_of([&] { DistinctInputs({a, c, dot}); }),
+  EXPECT_EQ(error_of([&] {
+              DistinctInputs({a, c, dot});
+            }),
             "inputs '" + a + "' and '" + dot + "' are one file: pooled twice, its values would count twice");
   EXPECT_NE(error_of([&] { DistinctInputs({link, a}); }).find("are one file"), std::string::npos);
   DistinctInputs copies({a, c, b});

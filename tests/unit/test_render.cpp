@@ -13,9 +13,9 @@
 #include <string>
 
 #include "analysis/fragments.hpp"
+#include "analysis/fragments_io.hpp"
 #include "core/error.hpp"
 #include "core/provenance.hpp"
-#include "analysis/fragments_io.hpp"
 #include "io/header.hpp"
 #include "io/mesh_io.hpp"
 #include "io/output_file.hpp"
@@ -109,7 +109,8 @@ TEST(RenderColour, ViridisEndsMiddleAndClamping) {
   expect_rgb_near(render::viridis(1.0), {0.993248, 0.906157, 0.143936});
   expect_rgb_near(render::viridis(0.5), {0.127568, 0.566949, 0.550556});
   // Halfway between two samples: their mean.
-  expect_rgb_near(render::viridis(0.05), {(0.267004 + 0.282623) / 2, (0.004874 + 0.140926) / 2, (0.329415 + 0.457517) / 2});
+  expect_rgb_near(render::viridis(0.05),
+                  {(0.267004 + 0.282623) / 2, (0.004874 + 0.140926) / 2, (0.329415 + 0.457517) / 2});
   EXPECT_EQ(render::viridis(-3.0), render::viridis(0.0));
   EXPECT_EQ(render::viridis(7.0), render::viridis(1.0));
   EXPECT_EQ(render::viridis(std::nan("")), render::viridis(0.0));
@@ -259,8 +260,9 @@ TEST(RenderPicture, RefusesACellAtANonFinitePositionOrAngle) {
     const io::Group root = io::open_input(r.path);
     const render::RunPicture picture(root, std::nullopt, {});
     EXPECT_NO_THROW(picture.figure(0));
-    const std::string expected = r.path + (angle ? ":/particles/cells/angle: frame 1 (t = 0.5 s): cell 2: angle nan"
-                                                 : ":/particles/cells/position: frame 1 (t = 0.5 s): cell 2: (0.5, nan)") +
+    const std::string expected = r.path +
+                                 (angle ? ":/particles/cells/angle: frame 1 (t = 0.5 s): cell 2: angle nan"
+                                        : ":/particles/cells/position: frame 1 (t = 0.5 s): cell 2: (0.5, nan)") +
                                  " is not finite";
     try {
       picture.figure(1);
@@ -397,7 +399,8 @@ TEST(Provenance, LineAndItsPlaceInPngSvgCsv) {
   EXPECT_THROW(io::png_with_text("GIF89a", "k", "x"), RuntimeError);
 
   EXPECT_EQ(io::svg_with_metadata("<?xml version=\"1.0\"?>\n<svg width=\"4\">\n<g/>\n</svg>\n", "a&\"b\""),
-            "<?xml version=\"1.0\"?>\n<svg width=\"4\">\n<metadata id=\"provenance\">a&amp;&quot;b&quot;</metadata>\n<g/>\n</svg>\n");
+            "<?xml version=\"1.0\"?>\n<svg width=\"4\">\n<metadata "
+            "id=\"provenance\">a&amp;&quot;b&quot;</metadata>\n<g/>\n</svg>\n");
   EXPECT_THROW(io::svg_with_metadata("<html/>", "x"), RuntimeError);
   EXPECT_EQ(io::csv_comment("tool=x"), "# tool=x\n");
 }
@@ -423,8 +426,9 @@ TEST(Xdmf, RunSidecarReferencesTheDatasets) {
   EXPECT_EQ(count_of(x, "<Time Value=\"0\"/>"), 3u);
   EXPECT_EQ(count_of(x, "<Time Value=\"0.5\"/>"), 3u);
   // Geometry: frame k of position/value [2,4,2], in the Xdmf 3 selection syntax.
-  EXPECT_EQ(count_of(x, "<DataItem Dimensions=\"4 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-                        "run.h5:/particles/cells/position/value|1 0 0:1 1 1:1 4 2:2 4 2</DataItem>"),
+  EXPECT_EQ(count_of(x,
+                     "<DataItem Dimensions=\"4 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                     "run.h5:/particles/cells/position/value|1 0 0:1 1 1:1 4 2:2 4 2</DataItem>"),
             2u);
   EXPECT_EQ(count_of(x, "run.h5:/particles/cells/position/value|0 0 0:1 1 1:1 4 2:2 4 2</DataItem>"), 2u);
   EXPECT_EQ(x.find("HyperSlab"), std::string::npos);
@@ -432,35 +436,45 @@ TEST(Xdmf, RunSidecarReferencesTheDatasets) {
   for (const char* name : {"velocity", "angle", "angular_velocity", "strain", "intact"})
     EXPECT_NE(x.find("<Attribute Name=\"" + std::string(name) + "\""), std::string::npos) << name;
   EXPECT_NE(x.find("<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">"), std::string::npos);
-  EXPECT_NE(x.find("Dimensions=\"4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">run.h5:/particles/cells/angle/value|1 0:1 1:1 4:2 4<"),
+  EXPECT_NE(x.find("Dimensions=\"4\" NumberType=\"Float\" Precision=\"8\" "
+                   "Format=\"HDF\">run.h5:/particles/cells/angle/value|1 0:1 1:1 4:2 4<"),
             std::string::npos);
-  EXPECT_NE(x.find("Dimensions=\"4\" NumberType=\"UChar\" Precision=\"1\" Format=\"HDF\">run.h5:/connectivity/beams/trajectory/intact/value|0 0:1 1:1 4:2 4<"),
+  EXPECT_NE(x.find("Dimensions=\"4\" NumberType=\"UChar\" Precision=\"1\" "
+                   "Format=\"HDF\">run.h5:/connectivity/beams/trajectory/intact/value|0 0:1 1:1 4:2 4<"),
             std::string::npos);
   EXPECT_NE(x.find("run.h5:/connectivity/beams/trajectory/strain/value|1 0:1 1:1 4:2 4<"), std::string::npos);
   // Static data: mass, inertia, area; the beams' pairs as two-point polylines.
-  EXPECT_NE(x.find("Dimensions=\"4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">run.h5:/particles/cells/mass<"),
+  EXPECT_NE(
+      x.find("Dimensions=\"4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">run.h5:/particles/cells/mass<"),
+      std::string::npos);
+  EXPECT_NE(x.find("<Topology TopologyType=\"Polyline\" NumberOfElements=\"4\" NodesPerElement=\"2\">"),
             std::string::npos);
-  EXPECT_NE(x.find("<Topology TopologyType=\"Polyline\" NumberOfElements=\"4\" NodesPerElement=\"2\">"), std::string::npos);
-  EXPECT_NE(x.find("Dimensions=\"4 2\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">run.h5:/connectivity/beams/pairs<"),
-            std::string::npos);
+  EXPECT_NE(
+      x.find("Dimensions=\"4 2\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">run.h5:/connectivity/beams/pairs<"),
+      std::string::npos);
   // The points' topology is shared by XInclude: the first element of the Domain.
-  EXPECT_NE(x.find("<Domain Name=\"run.h5\">\n    <Topology Name=\"points\" TopologyType=\"Polyvertex\" NumberOfElements=\"4\" "
-                   "NodesPerElement=\"1\">\n      <DataItem Dimensions=\"4\" NumberType=\"Int\" Precision=\"8\" "
-                   "Format=\"XML\">\n0 1 2 3\n"),
-            std::string::npos);
+  EXPECT_NE(
+      x.find(
+          "<Domain Name=\"run.h5\">\n    <Topology Name=\"points\" TopologyType=\"Polyvertex\" NumberOfElements=\"4\" "
+          "NodesPerElement=\"1\">\n      <DataItem Dimensions=\"4\" NumberType=\"Int\" Precision=\"8\" "
+          "Format=\"XML\">\n0 1 2 3\n"),
+      std::string::npos);
   EXPECT_EQ(count_of(x, "<xi:include xpointer=\"element(/1/1/1)\"/>"), 2u);
   // The reference polygons inline, shared by the polygon grid of every frame: a Mixed topology of
   // Polygon (3) elements and its geometry, the second and third elements of the Domain.
-  EXPECT_NE(x.find("</Topology>\n    <Topology Name=\"reference_polygons\" TopologyType=\"Mixed\" NumberOfElements=\"4\">"),
-            std::string::npos);
+  EXPECT_NE(
+      x.find("</Topology>\n    <Topology Name=\"reference_polygons\" TopologyType=\"Mixed\" NumberOfElements=\"4\">"),
+      std::string::npos);
   EXPECT_NE(x.find("</Topology>\n    <Geometry Name=\"reference_polygons\" GeometryType=\"XY\">"), std::string::npos);
   EXPECT_EQ(count_of(x, "<xi:include xpointer=\"element(/1/1/2)\"/>"), 2u);
   EXPECT_EQ(count_of(x, "<xi:include xpointer=\"element(/1/1/3)\"/>"), 2u);
   EXPECT_EQ(count_of(x, "<Attribute Name=\"area\" AttributeType=\"Scalar\" Center=\"Cell\">"), 2u);
   EXPECT_NE(x.find("<DataItem Dimensions=\"24\" NumberType=\"Int\" Precision=\"8\" Format=\"XML\">\n3 4 0 1 2 3\n"),
             std::string::npos);
-  EXPECT_NE(x.find("<DataItem Dimensions=\"16 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">\n0 0\n1 0\n1 1\n0 1\n"),
-            std::string::npos);
+  EXPECT_NE(
+      x.find(
+          "<DataItem Dimensions=\"16 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">\n0 0\n1 0\n1 1\n0 1\n"),
+      std::string::npos);
   // Never the vertex offsets or the position series as attributes.
   EXPECT_EQ(x.find("Name=\"vertex_offset\""), std::string::npos);
   EXPECT_EQ(x.find("Name=\"position\""), std::string::npos);
@@ -471,8 +485,9 @@ TEST(Xdmf, RunSidecarReferencesTheDatasets) {
   EXPECT_NE(v2.find("<Xdmf Version=\"2.0\""), std::string::npos);
   EXPECT_EQ(count_of(v2, "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"4 2\">"), 6u);  // + velocity
   EXPECT_NE(v2.find(">1 0 0  1 1 1  1 4 2</DataItem>"), std::string::npos);
-  EXPECT_EQ(count_of(v2, "<DataItem Dimensions=\"2 4 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-                         "run.h5:/particles/cells/position/value</DataItem>"),
+  EXPECT_EQ(count_of(v2,
+                     "<DataItem Dimensions=\"2 4 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+                     "run.h5:/particles/cells/position/value</DataItem>"),
             4u);
   opt.flavour = io::XdmfFlavour::xdmf3;
 
@@ -510,9 +525,12 @@ TEST(Xdmf, MeshSidecarAndFragments) {
   EXPECT_EQ(x.find("<Time"), std::string::npos);
   EXPECT_NE(x.find("<Grid Name=\"cells\" GridType=\"Uniform\">"), std::string::npos);
   EXPECT_NE(x.find("<Grid Name=\"beams\" GridType=\"Uniform\">"), std::string::npos);
-  EXPECT_NE(x.find("<Topology TopologyType=\"Polyline\" NumberOfElements=\"7\" NodesPerElement=\"2\">"), std::string::npos);
-  EXPECT_NE(x.find("Dimensions=\"6 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">mesh.h5:/particles/cells/centroid<"),
+  EXPECT_NE(x.find("<Topology TopologyType=\"Polyline\" NumberOfElements=\"7\" NodesPerElement=\"2\">"),
             std::string::npos);
+  EXPECT_NE(
+      x.find(
+          "Dimensions=\"6 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">mesh.h5:/particles/cells/centroid<"),
+      std::string::npos);
   EXPECT_NE(x.find("mesh.h5:/connectivity/beams/length<"), std::string::npos);
   EXPECT_NE(x.find("mesh.h5:/connectivity/beams/section<"), std::string::npos);
   EXPECT_NE(x.find("mesh.h5:/particles/cells/second_moment<"), std::string::npos);
@@ -539,8 +557,9 @@ TEST(Xdmf, MeshSidecarAndFragments) {
   opt.fragments_file = "f6.h5";
   const std::string y = io::xdmf_document(root, opt);
   EXPECT_NE(y.find("<Attribute Name=\"fragment\" AttributeType=\"Scalar\" Center=\"Cell\">"), std::string::npos);
-  EXPECT_NE(y.find("Dimensions=\"6\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">f6.h5:/fragments/cell_fragment<"),
-            std::string::npos);
+  EXPECT_NE(
+      y.find("Dimensions=\"6\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">f6.h5:/fragments/cell_fragment<"),
+      std::string::npos);
   const io::Group f5 = io::open_input((dir / "f5.h5").string());
   opt.fragments = &f5;
   EXPECT_THROW(io::xdmf_document(root, opt), InputError);
@@ -551,7 +570,8 @@ TEST(Xdmf, MeshSidecarAndFragments) {
   EXPECT_EQ(read_text(xmf), x);
   EXPECT_THROW(io::write_text_file((dir / "missing" / "m.xmf").string(), x), UsageError);
   std::size_t temps = 0;
-  for (const auto& e : fs::directory_iterator(dir)) temps += e.path().filename().string().find(".tmp-") != std::string::npos;
+  for (const auto& e : fs::directory_iterator(dir))
+    temps += e.path().filename().string().find(".tmp-") != std::string::npos;
   EXPECT_EQ(temps, 0u);
   fs::remove_all(dir);
 }

@@ -21,7 +21,7 @@ namespace {
 using namespace frac::rubber;
 
 struct Outcome {
-  double advance = 0;  // Δ, reference
+  double advance = 0;                  // Δ, reference
   double speed = 0, c_T = 0, c_L = 0;  // m/s: the tip's last fitted lab speed, the lattice's own along x
 };
 
@@ -34,7 +34,8 @@ Outcome run_crack(const std::string& law) {
   const std::string text =
       "[loading]\nstretch_x = 1.2\nstretch_y = 3\n[boundary]\nclamp_rows = 2\nclamp_columns = 2\n"
       "[crack]\nseed_length = 0.025\n[stop]\nt_max = 3e-4\ntip_margin = 0.01\n"
-      "[output]\nobserve_every = 50\nspeed_window = 1e-4\n[law]\ncutoff_length = 2.8e-3\n" + law;
+      "[output]\nobserve_every = 50\nspeed_window = 1e-4\n[law]\ncutoff_length = 2.8e-3\n" +
+      law;
   frac::Scene scene = frac::Scene::parse(text, "crack.ini");
   const RubberScene sc = read_rubber_scene(scene, mesh);
   scene.check_all_used();
@@ -50,8 +51,8 @@ Outcome run_crack(const std::string& law) {
 // in 0.5 ms (one crossing bond past u_c at the seed tip), so < 5Δ is the bound with room. The
 // freeze crack outruns the shear waves by far (measured about 6 c_T, 1.1 c_L): v > 2 c_T.
 TEST(RubberCrack, FreezeWithCrackPathRunsWhereThePapersLawStalls) {
-  const Outcome freeze = run_crack(
-      "cutoff = none\nfailure = freeze\n[crack]\npath_cutoff_ratio = 1.3\n[integrator]\ndt = 2.5e-7\n");
+  const Outcome freeze =
+      run_crack("cutoff = none\nfailure = freeze\n[crack]\npath_cutoff_ratio = 1.3\n[integrator]\ndt = 2.5e-7\n");
   const Outcome paper = run_crack("cutoff_width = 8e-6\n[integrator]\nsafety = 0.2\n");
   std::cout << "[measured] b = 1.5, 120 x 30 strip, 0.3 ms: freeze + crack path " << freeze.advance << " spacings at "
             << freeze.speed << " m/s (c_T " << freeze.c_T << ", c_L " << freeze.c_L << "); the paper's law "

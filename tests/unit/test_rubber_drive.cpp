@@ -31,7 +31,8 @@ mesh::NodeMesh strip(std::int64_t nx, std::int64_t ny) {
 RubberSetup setup_for(const std::string& extra, const mesh::NodeMesh& m) {
   const std::string text =
       "[loading]\nkind = stretch\nstretch_x = 1.2\nstretch_y = 3\n[law]\ncutoff_length = 3.45e-3\n"
-      "[boundary]\nclamp_columns = 2\n[stop]\nt_max = 5e-4\n[output]\nobserve_every = 5\n" + extra;
+      "[boundary]\nclamp_columns = 2\n[stop]\nt_max = 5e-4\n[output]\nobserve_every = 5\n" +
+      extra;
   Scene s = Scene::parse(text, "drive.ini");
   const RubberScene sc = read_rubber_scene(s, m);
   s.check_all_used();

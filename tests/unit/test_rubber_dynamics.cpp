@@ -8,12 +8,12 @@
 #include <cstring>
 #include <iostream>
 
+#include "continuum/mooney_rivlin.hpp"
 #include "core/rng.hpp"
 #include "dynamics/integrator.hpp"
 #include "mesh/triangular_lattice.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/model.hpp"
-#include "continuum/mooney_rivlin.hpp"
 #include "rubber_test_support.hpp"
 
 namespace {
@@ -128,8 +128,8 @@ EnergyTrace run_thermal(double dt, double t_end, int threads = 1) {
 TEST(RubberDynamics, VerletEnergyErrorScalesAsDtSquared) {
   const EnergyTrace a = run_thermal(0.01, 20), b = run_thermal(0.02, 20);
   const double ratio = b.max_fluctuation / a.max_fluctuation;
-  std::cout << "[measured] |dE|/KE0 over 20 time units: " << a.max_fluctuation << " at dt = 0.01, "
-            << b.max_fluctuation << " at dt = 0.02 (ratio " << ratio << ", dt^2 gives 4)\n";
+  std::cout << "[measured] |dE|/KE0 over 20 time units: " << a.max_fluctuation << " at dt = 0.01, " << b.max_fluctuation
+            << " at dt = 0.02 (ratio " << ratio << ", dt^2 gives 4)\n";
   EXPECT_GT(ratio, 3.2);
   EXPECT_LT(ratio, 4.8);
   EXPECT_LT(a.max_fluctuation, 1e-2);

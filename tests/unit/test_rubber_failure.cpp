@@ -69,8 +69,8 @@ TEST(RubberFailure, FrozenTermsHoldTheirValueAtTheCrossing) {
   const Matrix2d F{{1.2, 0}, {0, 3.0}};
   const std::size_t failing = 3 * 14 + 1;  // node 14's bond at 60°, 2.63Δ long at q0
   const double uc = 2.9;
-  for (const auto& [cutoff, weight] : {std::tuple{"none", "pair"}, std::tuple{"fermi", "pair"},
-                                       std::tuple{"fermi", "all_bonds"}}) {
+  for (const auto& [cutoff, weight] :
+       {std::tuple{"none", "pair"}, std::tuple{"fermi", "pair"}, std::tuple{"fermi", "all_bonds"}}) {
     const BondLaw law = natural_law(1.5, 0.1, 4.0, 0.05, "marder", cutoff, "marder", weight);
     Model model(L, options(law, Failure::freeze)), intact(L, options(law, Failure::paper)),
         removed(L, options(law, Failure::paper));
@@ -128,7 +128,8 @@ TEST(RubberFailure, ForcesMatchFiniteDifferencesWithFrozenTerms) {
   const Matrix2d F{{1.2, 0.1}, {0, 3.0}};
   double worst = 0;
   for (const auto& [pair, cutoff, angle, weight, kappa] :
-       {std::tuple{"marder", "none", "marder", "pair", 0.0}, std::tuple{"marder", "fermi", "marder-pairwise", "pair", 0.0},
+       {std::tuple{"marder", "none", "marder", "pair", 0.0},
+        std::tuple{"marder", "fermi", "marder-pairwise", "pair", 0.0},
         std::tuple{"marder-c1", "fermi", "marder", "all_bonds", 0.0},
         std::tuple{"marder", "fermi", "marder", "pair", 0.5},
         std::tuple{"marder-soft", "smoothstep", "marder", "pair", 0.0}}) {
@@ -164,14 +165,16 @@ TEST(RubberFailure, ForcesMatchFiniteDifferencesWithFrozenTerms) {
       if (ok) break;
     }
     // The compact cut-off has h(u_c) = 0: a bond failing there has no three-body term left to freeze.
-    if (std::string(cutoff) == "smoothstep") EXPECT_EQ(model.potential_energy(qk).frozen, 0.0);
-    else EXPECT_NE(model.potential_energy(qk).frozen, 0.0) << cutoff;
+    if (std::string(cutoff) == "smoothstep")
+      EXPECT_EQ(model.potential_energy(qk).frozen, 0.0);
+    else
+      EXPECT_NE(model.potential_energy(qk).frozen, 0.0) << cutoff;
     const double err = fd_error(model, qk);
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-6) << pair << " " << cutoff << " " << angle << " " << weight << " κ " << kappa;
   }
-  std::cout << "[measured] freeze, forces vs central differences with frozen terms: worst error / max |F| = "
-            << worst << "\n";
+  std::cout << "[measured] freeze, forces vs central differences with frozen terms: worst error / max |F| = " << worst
+            << "\n";
 }
 
 // ------------------------------------------------------------------------------------------ far field
@@ -233,8 +236,8 @@ std::string with_dt(const std::string& keys, double dt) {
 }
 
 struct EnergyRun {
-  double worst = 0;     // max |E(t) − E(0)| over the run, J
-  double frozen = 0;    // J
+  double worst = 0;   // max |E(t) − E(0)| over the run, J
+  double frozen = 0;  // J
   std::size_t breaks = 0;
   std::vector<double> q;  // at the end
 };
@@ -242,9 +245,8 @@ struct EnergyRun {
 // 40 × 16 strip at (1.2, 3), b = 1.5, a 10Δ seed kicked open: the path cut-off 0.13Δ above the far field
 // and the bulk's 1.3 times it; 10 time units, the energy sampled every step.
 EnergyRun run_strip(const std::string& law_keys, double dt) {
-  const std::string keys =
-      "[loading]\nstretch_x = 1.2\nstretch_y = 3\n[law]\ncutoff = none\ncutoff_length = 2.8e-3\n" + law_keys +
-      "[crack]\nseed_length = 0.01\ntip_kick = 20\npath_cutoff_ratio = 1.3\n";
+  const std::string keys = "[loading]\nstretch_x = 1.2\nstretch_y = 3\n[law]\ncutoff = none\ncutoff_length = 2.8e-3\n" +
+                           law_keys + "[crack]\nseed_length = 0.01\ntip_kick = 20\npath_cutoff_ratio = 1.3\n";
   Strip s = make_strip(40, 16, with_dt(keys, dt));
   Model& model = *s.sys.model;
   frac::dynamics::VelocityVerlet verlet;
@@ -277,8 +279,9 @@ TEST(RubberFailure, EnergyConservedThroughFailures) {
   const EnergyRun paper = run_strip("[physics]\nirreversible = on\n[breaking]\nextra_widths = 1e-9\n", 4e-7);
   std::cout << "[measured] freeze, 40 x 16 strip through " << coarse.breaks << " and " << fine.breaks
             << " failures: max |E - E0| = " << coarse.worst / ma << " m a (dt = 4e-7 s), " << fine.worst / ma
-            << " m a (1e-7 s), frozen " << coarse.frozen / ma << " m a; the paper's law broken at u_c: "
-            << paper.worst / ma << " m a over " << paper.breaks << " failures\n";
+            << " m a (1e-7 s), frozen " << coarse.frozen / ma
+            << " m a; the paper's law broken at u_c: " << paper.worst / ma << " m a over " << paper.breaks
+            << " failures\n";
   EXPECT_GT(coarse.breaks, 200u);
   EXPECT_LT(coarse.worst, 1e-2 * std::abs(coarse.frozen));
   EXPECT_LT(fine.worst, coarse.worst / 1.5);

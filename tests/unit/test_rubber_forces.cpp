@@ -10,15 +10,15 @@
 #include <iostream>
 #include <numbers>
 
+#include "continuum/mooney_rivlin.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "mesh/triangular_lattice.hpp"
 #include "rubber/bond_law.hpp"
 #include "rubber/lattice.hpp"
 #include "rubber/model.hpp"
-#include "continuum/mooney_rivlin.hpp"
-#include "rubber_test_support.hpp"
 #include "rubber/probe.hpp"
+#include "rubber_test_support.hpp"
 
 namespace {
 
@@ -34,8 +34,8 @@ using test::max_abs;
 using test::natural_law;
 
 std::unique_ptr<Model> make_model(const BondLaw& law, std::int64_t nx, std::int64_t ny, bool rows_x, double notch,
-                                  bool periodic, int threads = 1,
-                                  DampingKind damping = DampingKind::none, double beta = 0) {
+                                  bool periodic, int threads = 1, DampingKind damping = DampingKind::none,
+                                  double beta = 0) {
   frac::mesh::TriangularLatticeOptions o;
   o.nx = nx;
   o.ny = ny;
@@ -69,7 +69,6 @@ Matrix2d random_F(frac::Rng& rng, double lo, double hi) {
   return rot(rng.uniform(0, 2 * std::numbers::pi)) * Matrix2d{{l1, 0}, {0, l2}} *
          rot(rng.uniform(0, 2 * std::numbers::pi)).transpose();
 }
-
 
 // ------------------------------------------------------------------------------------------ evaluators
 TEST(RubberLaw, PairBranchesJoinAndDerivativesMatch) {
@@ -171,8 +170,8 @@ TEST(RubberContinuum, EnergyAndPiolaStressOfRandomHomogeneousDeformations) {
       }
     }
   }
-  std::cout << "[measured] continuum limit: energy rel. error " << worst_energy << ", Piola rel. error "
-            << worst_stress << ", residual force / stress " << worst_force << "\n";
+  std::cout << "[measured] continuum limit: energy rel. error " << worst_energy << ", Piola rel. error " << worst_stress
+            << ", residual force / stress " << worst_force << "\n";
 }
 
 TEST(RubberContinuum, KnownStressAtOnePointFiveTwoPointFive) {
@@ -229,12 +228,10 @@ std::vector<double> random_near(const Model& model, const Matrix2d& F, double am
 TEST(RubberForces, MatchFiniteDifferencesInAllBranches) {
   frac::Rng rng(5);
   double worst = 0;
-  for (const auto& [pair, cutoff, angle] : {std::tuple{"marder", "fermi", "marder"},
-                                             std::tuple{"marder", "fermi", "marder-pairwise"},
-                                             std::tuple{"marder-c1", "fermi", "marder"},
-                                             std::tuple{"marder-c1", "fermi", "marder-pairwise"},
-                                             std::tuple{"marder", "smoothstep", "marder"},
-                                             std::tuple{"marder-soft", "smoothstep", "marder"}}) {
+  for (const auto& [pair, cutoff, angle] :
+       {std::tuple{"marder", "fermi", "marder"}, std::tuple{"marder", "fermi", "marder-pairwise"},
+        std::tuple{"marder-c1", "fermi", "marder"}, std::tuple{"marder-c1", "fermi", "marder-pairwise"},
+        std::tuple{"marder", "smoothstep", "marder"}, std::tuple{"marder-soft", "smoothstep", "marder"}}) {
     {
       const double width = std::string(cutoff) == "smoothstep" ? 0.2 : 0.05;
       const BondLaw law = natural_law(1.5, 0.1, 2.75, width, pair, cutoff, angle);
@@ -299,11 +296,10 @@ TEST(RubberForces, SumToZeroAndVirialIsSymmetric) {
 TEST(RubberForces, AllBondsWeightMatchesFiniteDifferences) {
   frac::Rng rng(17);
   double worst = 0;
-  for (const auto& [pair, cutoff, angle] : {std::tuple{"marder", "fermi", "marder"},
-                                             std::tuple{"marder", "fermi", "marder-pairwise"},
-                                             std::tuple{"marder-c1", "fermi", "marder"},
-                                             std::tuple{"marder-soft", "smoothstep", "marder"},
-                                             std::tuple{"marder-soft", "smoothstep", "marder-pairwise"}}) {
+  for (const auto& [pair, cutoff, angle] :
+       {std::tuple{"marder", "fermi", "marder"}, std::tuple{"marder", "fermi", "marder-pairwise"},
+        std::tuple{"marder-c1", "fermi", "marder"}, std::tuple{"marder-soft", "smoothstep", "marder"},
+        std::tuple{"marder-soft", "smoothstep", "marder-pairwise"}}) {
     const double width = std::string(cutoff) == "smoothstep" ? 0.2 : 0.05;
     const BondLaw law = natural_law(1.5, 0.1, 2.75, width, pair, cutoff, angle, "all_bonds");
     const BondLaw paper = natural_law(1.5, 0.1, 2.75, width, pair, cutoff, angle);
@@ -323,8 +319,7 @@ TEST(RubberForces, AllBondsWeightMatchesFiniteDifferences) {
       EXPECT_GT(std::abs(model->potential_energy(q).three_body - reference->potential_energy(q).three_body), 1e-3);
     }
   }
-  std::cout << "[measured] all_bonds weight, forces vs central differences: worst error / max |F| = " << worst
-            << "\n";
+  std::cout << "[measured] all_bonds weight, forces vs central differences: worst error / max |F| = " << worst << "\n";
 }
 
 // Far field: complete shells, bonds far below u_c: W = 1, exactly with the compact smoothstep cut-off
@@ -352,8 +347,9 @@ TEST(RubberForces, AllBondsWeightIsOneInTheFarField) {
     double df = 0;
     for (std::size_t k = 0; k < q.size(); ++k) df = std::max(df, std::abs(fa[k] - fb[k]));
     const double ea = a->potential_energy(q).three_body, eb = b->potential_energy(q).three_body;
-    std::cout << "[measured] far field (1.2, 3), " << l.cutoff << ": all_bonds vs pair, max |dF| / max |F| = "
-              << df / max_abs(fb) << ", three-body energy " << std::abs(ea - eb) / std::abs(eb) << "\n";
+    std::cout << "[measured] far field (1.2, 3), " << l.cutoff
+              << ": all_bonds vs pair, max |dF| / max |F| = " << df / max_abs(fb) << ", three-body energy "
+              << std::abs(ea - eb) / std::abs(eb) << "\n";
     EXPECT_LE(df, l.force_tol * max_abs(fb)) << l.cutoff;
     EXPECT_LE(std::abs(ea - eb), l.energy_tol * std::abs(eb)) << l.cutoff;
   }
@@ -363,8 +359,8 @@ TEST(RubberForces, AllBondsWeightIsOneInTheFarField) {
 // sum (1.08 m a/Δ outwards, b = 1.5); with all_bonds their nodes carry the pair law alone, f'(Δ) = 0, and
 // full shells at F = I exert no three-body force: the whole notched sheet is force-free.
 TEST(RubberForces, AllBondsWeightMakesFreeEdgesForceFree) {
-  auto a = make_model(natural_law(1.5, 0.1, 3.5, 0.05, "marder", "fermi", "marder", "all_bonds"), 12, 10, true, 4,
-                      false);
+  auto a =
+      make_model(natural_law(1.5, 0.1, 3.5, 0.05, "marder", "fermi", "marder", "all_bonds"), 12, 10, true, 4, false);
   auto b = make_model(natural_law(1.5, 0.1, 3.5, 0.05), 12, 10, true, 4, false);
   const auto q = deformed(*a, Matrix2d::Identity());
   std::vector<double> fa(q.size()), fb(q.size());

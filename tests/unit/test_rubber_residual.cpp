@@ -38,8 +38,6 @@ std::unique_ptr<Model> make(const BondLaw& law, double kappa, const Matrix2d& F,
   return std::make_unique<Model>(std::move(L), mo);
 }
 
-
-
 const Matrix2d kF{{1.2, 0}, {0, 2.2}};  // far-field bonds 2.3Δ; u_c = 2.75Δ, width 0.05Δ
 
 TEST(RubberResidual, ForcesMatchFiniteDifferences) {

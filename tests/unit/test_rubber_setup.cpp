@@ -81,12 +81,12 @@ TEST(RubberSetup, FarFieldWarningsNameTheNumbers) {
   EXPECT_NE(near.warnings[0].find("stiffens the far field"), std::string::npos);
   EXPECT_GT(near.lattice_x.transverse, 2 * near.mr_x.transverse);  // what the warning is about
   // The smoothstep cut-off is exactly 1 below u_c − L: no warning however close, until it reaches u_0.
-  const RubberSetup soft =
-      setup_for(std::string(kStretch) + "[law]\ncutoff = smoothstep\ncutoff_length = 2.72e-3\ncutoff_width = 5e-5\n", m);
+  const RubberSetup soft = setup_for(
+      std::string(kStretch) + "[law]\ncutoff = smoothstep\ncutoff_length = 2.72e-3\ncutoff_width = 5e-5\n", m);
   EXPECT_TRUE(soft.warnings.empty()) << soft.warnings[0];
   EXPECT_NEAR(soft.lattice_x.transverse, soft.mr_x.transverse, 0.01 * soft.mr_x.transverse);
-  const RubberSetup reach =
-      setup_for(std::string(kStretch) + "[law]\ncutoff = smoothstep\ncutoff_length = 2.70e-3\ncutoff_width = 5e-5\n", m);
+  const RubberSetup reach = setup_for(
+      std::string(kStretch) + "[law]\ncutoff = smoothstep\ncutoff_length = 2.70e-3\ncutoff_width = 5e-5\n", m);
   ASSERT_EQ(reach.warnings.size(), 1u);
   EXPECT_NE(reach.warnings[0].find("reaches the far-field bonds"), std::string::npos) << reach.warnings[0];
   // A bond family in the short-bond branch (λx = 1, rows along x), and the way out.

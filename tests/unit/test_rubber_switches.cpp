@@ -99,7 +99,8 @@ struct Twin {
 Twin make_run(const frac::mesh::NodeMesh& m, const std::string& extra) {
   const std::string text =
       "[loading]\nstretch_x = 1.2\nstretch_y = 3\n[law]\ncutoff_length = 2.85e-3\n[boundary]\nclamp_columns = 2\n"
-      "[crack]\nseed_length = 0.01\ntip_kick = 40\n[initial]\nnoise = 2\n" + extra;
+      "[crack]\nseed_length = 0.01\ntip_kick = 40\n[initial]\nnoise = 2\n" +
+      extra;
   frac::Scene scene = frac::Scene::parse(text, "switches.ini");
   const RubberScene sc = read_rubber_scene(scene, m);
   scene.check_all_used();

@@ -10,10 +10,10 @@
 #include <iostream>
 #include <numbers>
 
-#include "dynamics/integrator.hpp"
 #include "continuum/mooney_rivlin.hpp"
-#include "rubber_test_support.hpp"
+#include "dynamics/integrator.hpp"
 #include "rubber/probe.hpp"
+#include "rubber_test_support.hpp"
 
 namespace {
 
@@ -73,8 +73,8 @@ TEST(RubberWaves, StandingWavesMatchMooneyRivlinSpeeds) {
   const double b = 1.5;
   const BondLaw law = natural_law(b, 0.1, 100, 0.1);  // every bond in branch 2, h = 1
   double worst = 0;
-  for (const Case c : {Case{1.2, 3, 'x'}, Case{1.2, 3, 'y'}, Case{1.5, 3, 'x'}, Case{1.5, 3, 'y'}, Case{2, 2, 'x'},
-                       Case{2, 2, 'y'}}) {
+  for (const Case c :
+       {Case{1.2, 3, 'x'}, Case{1.2, 3, 'y'}, Case{1.5, 3, 'x'}, Case{1.5, 3, 'y'}, Case{2, 2, 'x'}, Case{2, 2, 'y'}}) {
     const bool along_x = c.dir == 'x';
     // Box 64Δ long in the direction of propagation (rows along x: 64 nodes along x, or 74 rows ≈ 64.1Δ along y).
     const std::int64_t nx = along_x ? 64 : 4, ny = along_x ? 4 : 74;
@@ -102,8 +102,8 @@ TEST(RubberWaves, StandingWavesMatchMooneyRivlinSpeeds) {
     const double et = got[0] / want.transverse - 1, el = got[1] / want.longitudinal - 1;
     worst = std::max({worst, std::abs(et), std::abs(el)});
     std::cout << "[measured] (" << c.lx << ", " << c.ly << ") along " << c.dir << ": c_T " << got[0] << " (MR "
-              << want.transverse << ", " << 100 * et << "%), c_L " << got[1] << " (MR " << want.longitudinal
-              << ", " << 100 * el << "%)\n";
+              << want.transverse << ", " << 100 * et << "%), c_L " << got[1] << " (MR " << want.longitudinal << ", "
+              << 100 * el << "%)\n";
     EXPECT_LT(std::abs(et), 0.02);
     EXPECT_LT(std::abs(el), 0.02);
   }
@@ -132,8 +132,8 @@ TEST(RubberWaves, CutoffCloseToTheBondLengthStiffensTheFarField) {
   const LatticeSpeeds far = lattice_speeds(natural_law(b, 0.1, u0 + 15 * w, w), 1, 1.2, 3, 'x');
   const LatticeSpeeds near = lattice_speeds(natural_law(b, 0.1, u0 + 6 * w, w), 1, 1.2, 3, 'x');
   std::cout << "[measured] (1.2, 3) along x, width 0.05: u_c = u0 + 15w: c_T " << far.transverse << " c_L "
-            << far.longitudinal << "; u_c = u0 + 6w: c_T " << near.transverse << " c_L " << near.longitudinal
-            << " (MR " << want.transverse << ", " << want.longitudinal << ")\n";
+            << far.longitudinal << "; u_c = u0 + 6w: c_T " << near.transverse << " c_L " << near.longitudinal << " (MR "
+            << want.transverse << ", " << want.longitudinal << ")\n";
   EXPECT_NEAR(far.transverse, want.transverse, 0.02 * want.transverse);
   EXPECT_NEAR(far.longitudinal, want.longitudinal, 0.02 * want.longitudinal);
   EXPECT_GT(near.transverse, 3 * want.transverse);

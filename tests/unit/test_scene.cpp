@@ -29,10 +29,10 @@ frac::Scene scene_with_override() {
 
 TEST(Scene, BadValueNamesTheFileOrTheOption) {
   frac::Scene scene = scene_with_override();
-  EXPECT_EQ(usage_error([&] { scene.positive("material.t_theta", 1); }),
-            "--material.t_theta = '-4': must be positive");
+  EXPECT_EQ(usage_error([&] { scene.positive("material.t_theta", 1); }), "--material.t_theta = '-4': must be positive");
   frac::Scene file_only = frac::Scene::parse("[material]\nt_eps = x\n", "file.ini");
-  EXPECT_EQ(usage_error([&] { file_only.number("material.t_eps", 1); }), "file.ini: material.t_eps = 'x': not a number");
+  EXPECT_EQ(usage_error([&] { file_only.number("material.t_eps", 1); }),
+            "file.ini: material.t_eps = 'x': not a number");
 }
 
 TEST(Scene, UnknownKeysNameTheirOrigin) {

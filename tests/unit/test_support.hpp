@@ -11,8 +11,7 @@ namespace frac::test {
 
 // <temporary folder>/fracture-test-<name>-<8 random hex digits>, created.
 inline std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("fracture-test-" + name + "-" + make_uuid().substr(0, 8));
+  const auto dir = std::filesystem::temp_directory_path() / ("fracture-test-" + name + "-" + make_uuid().substr(0, 8));
   std::filesystem::create_directories(dir);
   return dir;
 }

@@ -71,13 +71,13 @@ fs::path temp_dir(const std::string& name) {
 
 // ---- synthetic runs ----
 struct SyntheticPulse {
-  double speed = 2.5;        // lab, m/s
-  double width = 8.0;        // Gaussian sigma, lab m
-  double amplitude = 0.01;   // m
-  double direction = 0;      // rad; plane pulses
-  bool shear = false;        // polarisation across the direction
-  bool radial = false;       // cylindrical pulse from the source, amplitude ~ 1/sqrt(r)
-  Vec2 source{0, 0};         // lab
+  double speed = 2.5;       // lab, m/s
+  double width = 8.0;       // Gaussian sigma, lab m
+  double amplitude = 0.01;  // m
+  double direction = 0;     // rad; plane pulses
+  bool shear = false;       // polarisation across the direction
+  bool radial = false;      // cylindrical pulse from the source, amplitude ~ 1/sqrt(r)
+  Vec2 source{0, 0};        // lab
 };
 
 struct SyntheticRun {
@@ -86,7 +86,7 @@ struct SyntheticRun {
   std::string rows_along = "x";
   double stretch_x = 1.2, stretch_y = 3.0;
   int frames = 60;
-  double frame_interval = 1.0;  // s
+  double frame_interval = 1.0;                                  // s
   std::vector<std::pair<std::string, std::string>> parameters;  // /parameters/rubber-run
   SyntheticPulse pulse;
 };
@@ -141,14 +141,17 @@ Vec2 write_synthetic_run(const std::string& path, SyntheticRun s, bool cells = f
   SyntheticPulse& p = s.pulse;
   if (p.source == Vec2(0, 0)) p.source = middle;
 
-  ToolRun run = start_run(cells ? "dem-run" : "rubber-run", cells ? "dem-run --scene pulse.ini -" : "rubber-run --scene wave.ini -");
+  ToolRun run = start_run(cells ? "dem-run" : "rubber-run",
+                          cells ? "dem-run --scene pulse.ini -" : "rubber-run --scene wave.ini -");
   run.parameters = s.parameters;
   io::OutputFile out(path);
   io::write_header(out.root(), "run", run, out.uuid());
   const std::vector<double> mass(n, 1.0), inertia(n, 1.0 / 6);
   std::optional<io::RunWriter> writer;
-  if (cells) writer.emplace(out.root(), cm, mass, inertia);
-  else writer.emplace(out.root(), m, mass);
+  if (cells)
+    writer.emplace(out.root(), cm, mass, inertia);
+  else
+    writer.emplace(out.root(), m, mass);
   const auto& links = cells ? cm.beam : m.bond;
   const auto& link_length = cells ? cm.beam_length : m.bond_length;
   const Vec2 dir(std::cos(p.direction), std::sin(p.direction)), perp(-dir.y(), dir.x());
@@ -215,9 +218,9 @@ TEST(MooneyRivlinWaves, ClosedFormsMatchTheNumericalAcousticTensorOfTheStrainEne
   struct Case {
     double lx, ly, b, deg;
   };
-  const std::vector<Case> cases = {{1, 1, 1.5, 0},    {1, 1, 0.5, 37},   {1.2, 3, 1.5, 0},  {1.2, 3, 1.5, 90},
-                                   {1.5, 3, 1.5, 40}, {2, 2, 1.5, 25},   {1.5, 2.5, 1.0, 120}, {0.8, 1.7, 1.9, -60},
-                                   {3, 1.1, 0.2, 10}};
+  const std::vector<Case> cases = {{1, 1, 1.5, 0},       {1, 1, 0.5, 37},      {1.2, 3, 1.5, 0},
+                                   {1.2, 3, 1.5, 90},    {1.5, 3, 1.5, 40},    {2, 2, 1.5, 25},
+                                   {1.5, 2.5, 1.0, 120}, {0.8, 1.7, 1.9, -60}, {3, 1.1, 0.2, 10}};
   for (const auto& c : cases) {
     SCOPED_TRACE("stretch " + std::to_string(c.lx) + "x" + std::to_string(c.ly) + ", b " + std::to_string(c.b) +
                  ", direction " + std::to_string(c.deg));
@@ -460,7 +463,8 @@ TEST(WaveSpeedMeasure, RecoversThePlaneLongitudinalPulseSpeedWithinTheFrameBound
   const double c = s.pulse.speed, dt = s.frame_interval;
 
   // The link strain and the pulse's peak time the same front.
-  for (auto [signal, arrival] : {std::pair{Signal::strain, Arrival::threshold}, std::pair{Signal::displacement, Arrival::peak}}) {
+  for (auto [signal, arrival] :
+       {std::pair{Signal::strain, Arrival::threshold}, std::pair{Signal::displacement, Arrival::peak}}) {
     SCOPED_TRACE(std::string(name(signal)) + ", " + std::string(name(arrival)));
     FrontOptions opt;
     opt.modes = {WaveMode::longitudinal};
