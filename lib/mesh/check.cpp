@@ -199,6 +199,27 @@ void check_cells(const CellMesh& m, double len_tol, double rel_tol, Failures& fa
   }
 }
 
+// Link e of `links` (a mesh's beams or bonds, named `link`, joining `end`s of which there are n): ends in range,
+// distinct and in order, links sorted without repeats. Returns false when its ends cannot be used.
+bool check_link(const std::vector<std::array<std::int64_t, 2>>& links, std::size_t e, std::size_t n,
+                const std::string& link, const std::string& end, const std::string& id, Failures& fail) {
+  const auto [a, b] = links[e];
+  if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
+    fail.add(link + " index", id + " out of range");
+    return false;
+  }
+  if (a == b) {
+    fail.add(link + " order", id + " joins a " + end + " to itself");
+    return false;
+  }
+  if (a > b) fail.add(link + " order", id + ": need " + end + "_a < " + end + "_b");
+  if (e > 0 && !(links[e - 1] < links[e])) {
+    fail.add(links[e - 1] == links[e] ? link + " duplicate" : link + " order",
+             id + " follows " + std::to_string(links[e - 1][0]) + ", " + std::to_string(links[e - 1][1]));
+  }
+  return true;
+}
+
 // Each beam: cells in range, distinct and in order, beams sorted without repeats, its length the distance
 // of the centroids and its section the side the two cells share. Counts the beams of each cell in `degree`.
 void check_beams(const CellMesh& m, double len_tol, Failures& fail, std::vector<int>& degree) {
@@ -209,19 +230,7 @@ void check_beams(const CellMesh& m, double len_tol, Failures& fail, std::vector<
     auto id = [&] {
       return std::string("beam " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
     };
-    if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
-      fail.add("beam index", id() + " out of range");
-      continue;
-    }
-    if (a == b) {
-      fail.add("beam order", id() + " joins a cell to itself");
-      continue;
-    }
-    if (a > b) fail.add("beam order", id() + ": need cell_a < cell_b");
-    if (e > 0 && !(m.beam[e - 1] < m.beam[e])) {
-      fail.add(m.beam[e - 1] == m.beam[e] ? "beam duplicate" : "beam order",
-               id() + " follows " + std::to_string(m.beam[e - 1][0]) + ", " + std::to_string(m.beam[e - 1][1]));
-    }
+    if (!check_link(m.beam, e, n, "beam", "cell", id(), fail)) continue;
     const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
     ++degree[ua];
     ++degree[ub];
@@ -305,19 +314,7 @@ std::int64_t check_bonds(const NodeMesh& m, Failures& fail, std::vector<int>& de
     auto id = [&] {
       return std::string("bond " + std::to_string(e) + " (" + std::to_string(a) + ", " + std::to_string(b) + ")");
     };
-    if (a < 0 || b < 0 || a >= static_cast<std::int64_t>(n) || b >= static_cast<std::int64_t>(n)) {
-      fail.add("bond index", id() + " out of range");
-      continue;
-    }
-    if (a == b) {
-      fail.add("bond order", id() + " joins a node to itself");
-      continue;
-    }
-    if (a > b) fail.add("bond order", id() + ": need node_a < node_b");
-    if (e > 0 && !(m.bond[e - 1] < m.bond[e])) {
-      fail.add(m.bond[e - 1] == m.bond[e] ? "bond duplicate" : "bond order",
-               id() + " follows " + std::to_string(m.bond[e - 1][0]) + ", " + std::to_string(m.bond[e - 1][1]));
-    }
+    if (!check_link(m.bond, e, n, "bond", "node", id(), fail)) continue;
     const double dist = (m.position[static_cast<std::size_t>(b)] - m.position[static_cast<std::size_t>(a)]).norm();
     const double scale = m.spacing > 0.0 ? m.spacing : m.bond_length[e];
     if (!(m.bond_length[e] > 0)) {
