@@ -5,14 +5,6 @@
 namespace frac::dem {
 namespace {
 
-// x and y of every cell, interleaved (q's first two blocks), from q or v.
-void pairs(std::span<const double> s, std::size_t n, std::span<double> out) {
-  for (std::size_t k = 0; k < n; ++k) {
-    out[2 * k] = s[k];
-    out[2 * k + 1] = s[n + k];
-  }
-}
-
 // The third block: the angles, or their rates.
 void turns(std::span<const double> s, std::size_t n, std::span<double> out) {
   std::copy(s.begin() + static_cast<std::ptrdiff_t>(2 * n), s.begin() + static_cast<std::ptrdiff_t>(3 * n),
@@ -31,7 +23,7 @@ const std::vector<FrameRow>& frame_table() {
        false,
        2,
        false,
-       [](const Model& m, In in, std::span<double> out) { pairs(in.q(), m.bodies().n, out); },
+       [](const Model& m, In in, std::span<double> out) { run::interleave_xy(in.q(), m.bodies().n, out); },
        {}},
       {"velocity",
        cells,
@@ -39,7 +31,7 @@ const std::vector<FrameRow>& frame_table() {
        false,
        2,
        false,
-       [](const Model& m, In in, std::span<double> out) { pairs(in.v(), m.bodies().n, out); },
+       [](const Model& m, In in, std::span<double> out) { run::interleave_xy(in.v(), m.bodies().n, out); },
        {}},
       {"angle",
        cells,

@@ -1,18 +1,6 @@
 #include "rubber/frames.hpp"
 
 namespace frac::rubber {
-namespace {
-
-// x and y of every node, interleaved, from q or v.
-void pairs(std::span<const double> s, std::size_t n, std::span<double> out) {
-  for (std::size_t i = 0; i < n; ++i) {
-    out[2 * i] = s[i];
-    out[2 * i + 1] = s[n + i];
-  }
-}
-
-}  // namespace
-
 const std::vector<FrameRow>& frame_table() {
   using In = const dynamics::Integrator&;
   const std::string nodes = "particles/nodes", bonds = "connectivity/bonds/trajectory";
@@ -23,7 +11,7 @@ const std::vector<FrameRow>& frame_table() {
        false,
        2,
        false,
-       [](const Model& m, In in, std::span<double> out) { pairs(in.q(), m.nodes(), out); },
+       [](const Model& m, In in, std::span<double> out) { run::interleave_xy(in.q(), m.nodes(), out); },
        {}},
       {"velocity",
        nodes,
@@ -31,7 +19,7 @@ const std::vector<FrameRow>& frame_table() {
        false,
        2,
        false,
-       [](const Model& m, In in, std::span<double> out) { pairs(in.v(), m.nodes(), out); },
+       [](const Model& m, In in, std::span<double> out) { run::interleave_xy(in.v(), m.nodes(), out); },
        {}},
       {"intact",
        bonds,

@@ -23,6 +23,14 @@ struct FrameRow {
   std::function<void(const System&, const dynamics::Integrator&, std::span<std::uint8_t>)> fill_flags;
 };
 
+// x and y of each of n bodies, interleaved, from coordinates laid out as blocks (x of every body, then y, ...).
+inline void interleave_xy(std::span<const double> s, std::size_t n, std::span<double> out) {
+  for (std::size_t k = 0; k < n; ++k) {
+    out[2 * k] = s[k];
+    out[2 * k + 1] = s[n + k];
+  }
+}
+
 template <class System>
 std::vector<std::string> row_names(const std::vector<FrameRow<System>>& table) {
   std::vector<std::string> names;
