@@ -220,10 +220,17 @@ case $case in
       # SIGTERM on a full disk: the checkpoint cannot be written; exit 1 with the reason, not the signal.
       rm -rf disk/* disk/.[!.]*
       head -c 2900k /dev/zero > disk/fill 2>/dev/null || true
-      "${cmd[@]}" --stop.t_max 1 --checkpoint-every 0 --checkpoint disk/c.h5 -o out.h5 2> stderr.txt &
+      # A run that lasts (the explosion's stop rule off), signalled once its loop has written 1 MB of frames: the
+      # checkpoint, a copy of that output, cannot fit in what is left of the disk.
+      long=(--stop.t_max 1)
+      [[ $runner == dem ]] && long+=(--stop.steps_without_breaking 0)
+      "${cmd[@]}" "${long[@]}" --checkpoint-every 0 --checkpoint disk/c.h5 -o out.h5 2> stderr.txt &
       pid=$!
-      for _ in $(seq 300); do compgen -G ".out.h5.tmp-*" >/dev/null && break; sleep 0.1; done
-      sleep 0.5
+      for _ in $(seq 600); do
+        size=$( (stat -c %s .out.h5.tmp-* 2>/dev/null || true) | head -1)
+        ((${size:-0} > 1000000)) && break
+        sleep 0.1
+      done
       kill -TERM $pid
       set +e
       wait $pid
