@@ -5,6 +5,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "rubber/failures.hpp"
+
 namespace frac::rubber {
 namespace {
 
@@ -264,8 +266,7 @@ class Passes final : public ForcePasses {
       for (std::size_t s = 0; s < 3; ++s) {
         const std::size_t b = 3 * i + s;
         BondData& d = c.bond[b];
-        if (c.status[b] != kIntact) {
-          if (c.status[b] == kFreezing) c.status[b] = kBroken;  // its terms were frozen in the last evaluation
+        if (c.status[b] != kIntact) {  // (no kFreezing here: settle_failures ended them after their evaluation)
           d = BondData{0, 0, 0, 0, 0, 0};
           continue;
         }
@@ -278,24 +279,12 @@ class Passes final : public ForcePasses {
         const double u = std::sqrt(bx * bx + by * by);
         const double inv_u = 1 / u;
         const double uc = c.cutoff[b];
-        if (u > uc) [[unlikely]] {
-          if (c.track) {
-            if (c.past_cutoff[b] == 0) {
-              c.past_cutoff[b] = 1;
-              ++events;
-            }
-            if (u > uc + c.break_extra) {
-              ++breaks;
-              if (c.freeze) {
-                // Its vector for the centres of its ends, which freeze its terms; it exerts nothing.
-                c.status[b] = kFreezing;
-                d = BondData{bx, by, 0, 0, 0, 0};
-              } else {
-                c.status[b] = kBroken;
-                d = BondData{0, 0, 0, 0, 0, 0};
-              }
-              continue;
-            }
+        if (u > uc && c.track) [[unlikely]] {
+          if (bond_fails(c, b, u, uc, events, breaks)) {
+            // A kFreezing bond keeps its vector for the centres of its ends, which freeze its terms; it exerts
+            // nothing.
+            d = c.freeze ? BondData{bx, by, 0, 0, 0, 0} : BondData{0, 0, 0, 0, 0, 0};
+            continue;
           }
         }
         const VD f = pair(u, uc);

@@ -4,7 +4,8 @@
 // passes, each a loop over nodes split into contiguous ranges across the threads:
 //
 //   1. bonds:   for each forward bond b (3 per node): bond vector, h, h'/u, f'/u, the damping
-//               coefficient, once per bond (the exponential of h is the costly part).
+//               coefficient, once per bond (the exponential of h is the costly part); whether it fails at
+//               these positions (failures.hpp).
 //   2. centres: for each node i, the derivative D(i,s) = ∂E_i/∂x_j of its own energy
 //               E_i = Σ_s f(u_s) + Σ_{s≠t} h_s h_t g(a_s·a_t) with respect to each neighbour j = nbr(i,s).
 //               For a quadratic g (Marder's) the three-body sum is written through the moments
@@ -43,8 +44,8 @@ enum class DampingKind { none, uniform, near_failure };
 inline constexpr std::uint8_t kIntact = 0;
 inline constexpr std::uint8_t kRemoved = 1;  // missing, or cut on purpose (seed crack): no energy, no force
 inline constexpr std::uint8_t kBroken = 2;   // failed irreversibly: keeps the constant 2 f(u_c), no force
-// Failed in this evaluation under energy-neutral failure (ForceContext::freeze): the centres of its two
-// ends freeze its three-body terms; the next bonds pass makes it kBroken.
+// Failed at this evaluation's positions under energy-neutral failure (ForceContext::freeze): the centres of its
+// two ends freeze its three-body terms; settle_failures (failures.hpp) makes it kBroken after the evaluation.
 inline constexpr std::uint8_t kFreezing = 3;
 
 // Everything the passes read and write. Owned by the model; the pointers stay valid for its life.
@@ -61,7 +62,7 @@ struct ForceContext {
   // The three-body residual (three_body_residual.hpp): c_st, 6 × 6, or nullptr (the paper's law).
   const double* residual = nullptr;
 
-  // Dynamics: events and irreversible breaking happen only when `track` is set.
+  // Dynamics: events and irreversible breaking (failures.hpp) happen only when `track` is set.
   bool track = false;
   double break_extra = 0;  // irreversible breaking when u > u_c + break_extra; +inf: never (reversible law)
   // Energy-neutral failure: a bond breaks when it first passes u_c (break_extra is not used), and the

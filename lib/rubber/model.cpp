@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "rubber/failures.hpp"
 
 namespace frac::rubber {
 namespace {
@@ -147,12 +148,14 @@ void Model::make_phases() {
                      {}});
   }
   accelerations_.add(evaluation_);
-  // Where the next step starts from: failures in it are frozen where they happened.
+  // After the evaluation that froze them, the failed bonds are broken; and where the next step starts from, for
+  // the failures in it to be frozen where they happened.
   if (ctx_.freeze)
-    accelerations_.add({"lattice: previous positions",
+    accelerations_.add({"lattice: failures settled",
                         false,
                         [this](std::size_t t, std::size_t nt) {
                           const auto [i0, i1] = worker_range(lattice_.n, t, nt);
+                          settle_failures(ctx_, i0, i1);
                           const std::size_t n = lattice_.n;
                           std::copy(ctx_.x + i0, ctx_.x + i1, q_prev_.begin() + static_cast<std::ptrdiff_t>(i0));
                           std::copy(ctx_.y + i0, ctx_.y + i1, q_prev_.begin() + static_cast<std::ptrdiff_t>(n + i0));
@@ -299,8 +302,10 @@ void Model::visit_state(StateArchive& archive) {
   archive.array("frozen", frozen_, frozen_.size());
   archive.array("q_previous", q_prev_, q_prev_.size());
   if (!archive.loading()) return;
-  for (const std::uint8_t s : status_)
+  for (std::uint8_t& s : status_) {
     if (s > kFreezing) archive.refuse("status", "holds a status no bond has (" + std::to_string(s) + ")");
+    if (s == kFreezing) s = kBroken;  // (a checkpoint of an older build: its terms are frozen, as settled)
+  }
   if (!q_prev_.empty()) {
     ctx_.x_prev = q_prev_.data();
     ctx_.y_prev = q_prev_.data() + lattice_.n;
