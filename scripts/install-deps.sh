@@ -7,6 +7,7 @@ packages=(
   cmake g++ make pkg-config git
   libeigen3-dev libcgal-dev libboost-program-options-dev libgsl-dev
   libhdf5-dev zlib1g-dev hdf5-tools libgtest-dev libcairo2-dev gnuplot-nox time
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -1,6 +1,7 @@
 // dem-run: the polygon DEM of Kun, D'Addetta, Herrmann and Ramm (1999) on a Voronoi mesh, under a scene.
 #include <iostream>
 
+#include "comm/world.hpp"
 #include "core/cli.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -15,6 +16,7 @@ using namespace frac;
 
 int main(int argc, char** argv) {
   return cli::run_tool("dem-run", [&] {
+    comm::require_one_rank(comm::World::start(argc, argv));
     const cli::ToolSpec spec{
         "dem-run", "--scene SCENE.ini MESH|- [--section.key VALUE ...] -o RUN.h5",
         "Runs the polygon DEM on a mesh from mesh-gen voronoi under a scene (data/scenes/*.ini): beams, overlap "

@@ -12,7 +12,7 @@ for arg in "$@"; do
   IFS=';' read -ra parts <<< "$arg"
   deps+=("${parts[@]}")
 done
-layers=(core geometry mesh io dynamics continuum run dem rubber analysis render)
+layers=(core geometry mesh io dynamics continuum comm run dem rubber analysis render)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
