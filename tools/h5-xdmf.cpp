@@ -17,6 +17,37 @@ using namespace frac;
 
 namespace {
 
+// The sidecar's options from --polygons, --polygon-limit and --flavour.
+io::XdmfOptions xdmf_options(const std::string& polygons, std::size_t limit, const std::string& flavour) {
+  io::XdmfOptions opt;
+  if (polygons == "auto")
+    opt.polygons = io::XdmfPolygons::automatic;
+  else if (polygons == "on")
+    opt.polygons = io::XdmfPolygons::on;
+  else if (polygons == "off")
+    opt.polygons = io::XdmfPolygons::off;
+  else
+    throw UsageError("--polygons: unknown value '" + polygons + "' (auto, on or off)");
+  opt.inline_vertex_limit = limit;
+  if (flavour == "xdmf3")
+    opt.flavour = io::XdmfFlavour::xdmf3;
+  else if (flavour == "xdmf2")
+    opt.flavour = io::XdmfFlavour::xdmf2;
+  else
+    throw UsageError("--flavour: unknown value '" + flavour + "' (xdmf3 or xdmf2)");
+  return opt;
+}
+
+void print_report(const io::XdmfReport& report, const std::string& output) {
+  for (const auto& note : report.notes) std::cerr << "h5-xdmf: note: " << note << "\n";
+  std::cerr << "h5-xdmf: wrote " << (output == "-" ? std::string("standard output") : output) << ": " << report.bodies
+            << " bodies, " << report.links << " links, "
+            << (report.frames ? std::to_string(report.frames) + " frames" : std::string("no frames (mesh)"))
+            << (report.polygon_vertices ? ", polygons inline (" + std::to_string(report.polygon_vertices) + " vertices)"
+                                        : std::string())
+            << "\n";
+}
+
 int run(int argc, char** argv) {
   const cli::ToolSpec spec{
       "h5-xdmf", "FILE.h5 [options] [-o FILE.xmf]",
@@ -56,22 +87,7 @@ int run(int argc, char** argv) {
     throw UsageError(
         "h5-xdmf reads a named file, not standard input: the sidecar refers to the file's datasets by "
         "its name");
-  io::XdmfOptions opt;
-  if (polygons == "auto")
-    opt.polygons = io::XdmfPolygons::automatic;
-  else if (polygons == "on")
-    opt.polygons = io::XdmfPolygons::on;
-  else if (polygons == "off")
-    opt.polygons = io::XdmfPolygons::off;
-  else
-    throw UsageError("--polygons: unknown value '" + polygons + "' (auto, on or off)");
-  opt.inline_vertex_limit = limit;
-  if (flavour == "xdmf3")
-    opt.flavour = io::XdmfFlavour::xdmf3;
-  else if (flavour == "xdmf2")
-    opt.flavour = io::XdmfFlavour::xdmf2;
-  else
-    throw UsageError("--flavour: unknown value '" + flavour + "' (xdmf3 or xdmf2)");
+  io::XdmfOptions opt = xdmf_options(polygons, limit, flavour);
   if (output.empty()) output = std::filesystem::path(input).replace_extension(".xmf").string();
   check_file_roles({{"FILE", input}, {"--fragments", fragments}, {"--config", common.config}}, {{"-o", output}});
 
@@ -94,16 +110,7 @@ int run(int argc, char** argv) {
   io::XdmfReport report;
   const std::string text = io::xdmf_document(root, opt, &report);
   io::write_text_file(output, text);
-  if (!common.quiet) {
-    for (const auto& note : report.notes) std::cerr << "h5-xdmf: note: " << note << "\n";
-    std::cerr << "h5-xdmf: wrote " << (output == "-" ? std::string("standard output") : output) << ": " << report.bodies
-              << " bodies, " << report.links << " links, "
-              << (report.frames ? std::to_string(report.frames) + " frames" : std::string("no frames (mesh)"))
-              << (report.polygon_vertices
-                      ? ", polygons inline (" + std::to_string(report.polygon_vertices) + " vertices)"
-                      : std::string())
-              << "\n";
-  }
+  if (!common.quiet) print_report(report, output);
   return kExitOk;
 }
 

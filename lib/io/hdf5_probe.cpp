@@ -258,6 +258,75 @@ std::string describe(const std::string& name, const std::string& where, const st
   return name + (where.empty() ? "" : ":" + where) + ": damaged HDF5 file (" + why + ")";
 }
 
+// What the checking child reported through its pipe: the strings it walked, the last object it opened, its
+// verdict ("ok", "!where\twhy" or "m..."), and whether it stalled or sent what no child sends.
+struct ChildReport {
+  std::shared_ptr<WalkedStrings> strings = std::make_shared<WalkedStrings>();
+  std::string last_object, verdict;
+  bool stalled = false, garbled = false;
+};
+
+// Reads the child's messages (type, 8-byte length, payload) until it closes the pipe, stalls or garbles one.
+ChildReport read_child_report(int fd) {
+  ChildReport r;
+  std::string received;
+  bool done = false;
+  while (!done) {
+    pollfd p{fd, POLLIN, 0};
+    const int ready = poll(&p, 1, kStallMilliseconds);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) {
+      r.stalled = true;
+      break;
+    }
+    char buf[1 << 16];
+    const ssize_t n = read(fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    received.append(buf, static_cast<std::size_t>(n));
+    std::size_t at = 0;
+    while (received.size() - at >= 9) {
+      std::uint64_t length;
+      std::memcpy(&length, received.data() + at + 1, sizeof length);
+      if (length > kMaxReadBytes) {
+        r.garbled = done = true;
+        break;
+      }
+      if (received.size() - at - 9 < length) break;
+      const char type = received[at];
+      const std::string payload = received.substr(at + 9, length);
+      at += 9 + length;
+      if (type == '@')
+        r.last_object = payload;
+      else if (type == '!' || type == 'm')
+        r.verdict = std::string(1, type) + payload;
+      else if (type == 'k')
+        r.verdict = "ok";
+      else if (type == 's' && !read_strings_message(payload, *r.strings))
+        r.garbled = done = true;
+    }
+    received.erase(0, at);
+  }
+  return r;
+}
+
+// The error a failed check gives: the child's own verdict, else how it ended.
+[[noreturn]] void refuse_checked_file(const std::string& name, const ChildReport& r, int status) {
+  if (r.stalled) throw InputError(describe(name, r.last_object, "libhdf5 makes no progress reading it"));
+  if (r.verdict.starts_with("m"))
+    throw OutOfMemory("checking " + name + (r.last_object.empty() ? "" : ":" + r.last_object), 0);
+  if (r.verdict.starts_with("!")) {
+    const auto tab = r.verdict.find('\t');
+    const std::string where = r.verdict.substr(1, tab - 1), why = r.verdict.substr(tab + 1);
+    if (why == "not an HDF5 file") throw InputError(name + ": not an HDF5 file");
+    throw InputError(describe(name, where, why));
+  }
+  if (WIFSIGNALED(status))
+    throw InputError(
+        describe(name, r.last_object, std::string("libhdf5 fails reading it: ") + strsignal(WTERMSIG(status))));
+  throw InputError(describe(name, r.last_object, "libhdf5 cannot read it"));
+}
+
 }  // namespace
 
 std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, const std::vector<char>* image) {
@@ -283,64 +352,15 @@ std::shared_ptr<const WalkedStrings> probe_hdf5_file(const std::string& name, co
     }
   }
   close(fds[1]);
-  auto strings = std::make_shared<WalkedStrings>();
-  std::string received, last_object, verdict;
-  bool stalled = false, garbled = false, done = false;
-  while (!done) {
-    pollfd p{fds[0], POLLIN, 0};
-    const int ready = poll(&p, 1, kStallMilliseconds);
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready == 0) {
-      stalled = true;
-      break;
-    }
-    char buf[1 << 16];
-    const ssize_t n = read(fds[0], buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    received.append(buf, static_cast<std::size_t>(n));
-    std::size_t at = 0;
-    while (received.size() - at >= 9) {
-      std::uint64_t length;
-      std::memcpy(&length, received.data() + at + 1, sizeof length);
-      if (length > kMaxReadBytes) {
-        garbled = done = true;
-        break;
-      }
-      if (received.size() - at - 9 < length) break;
-      const char type = received[at];
-      const std::string payload = received.substr(at + 9, length);
-      at += 9 + length;
-      if (type == '@')
-        last_object = payload;
-      else if (type == '!' || type == 'm')
-        verdict = std::string(1, type) + payload;
-      else if (type == 'k')
-        verdict = "ok";
-      else if (type == 's' && !read_strings_message(payload, *strings))
-        garbled = done = true;
-    }
-    received.erase(0, at);
-  }
+  const ChildReport report = read_child_report(fds[0]);
   close(fds[0]);
-  if (stalled || garbled) kill(pid, SIGKILL);
+  if (report.stalled || report.garbled) kill(pid, SIGKILL);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (stalled) throw InputError(describe(name, last_object, "libhdf5 makes no progress reading it"));
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && verdict == "ok" && !garbled) return strings;
-  if (verdict.starts_with("m"))
-    throw OutOfMemory("checking " + name + (last_object.empty() ? "" : ":" + last_object), 0);
-  if (verdict.starts_with("!")) {
-    const auto tab = verdict.find('\t');
-    const std::string where = verdict.substr(1, tab - 1), why = verdict.substr(tab + 1);
-    if (why == "not an HDF5 file") throw InputError(name + ": not an HDF5 file");
-    throw InputError(describe(name, where, why));
-  }
-  if (WIFSIGNALED(status))
-    throw InputError(
-        describe(name, last_object, std::string("libhdf5 fails reading it: ") + strsignal(WTERMSIG(status))));
-  throw InputError(describe(name, last_object, "libhdf5 cannot read it"));
+  if (!report.stalled && WIFEXITED(status) && WEXITSTATUS(status) == 0 && report.verdict == "ok" && !report.garbled)
+    return report.strings;
+  refuse_checked_file(name, report, status);
 }
 
 }  // namespace frac::io
