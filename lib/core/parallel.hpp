@@ -60,23 +60,6 @@ inline Range this_thread_range(std::size_t items) {
   return static_range(items, static_cast<std::size_t>(thread_index()), static_cast<std::size_t>(thread_count()));
 }
 
-// Sums in a fixed grouping, the same bits whatever the thread count, each thread reading mostly what it
-// wrote: v[0, count) in blocks of `block` items, in item order within a block, then the blocks in order.
-// block_sums: out[b] for every block b that starts in `mine` (a thread's part of [0, count), in a team:
-// each block is summed by one thread); sum_of_blocks: the total, from out (after the team).
-inline void block_sums(const double* v, std::size_t count, std::size_t block, Range mine, double* out) {
-  for (std::size_t b = (mine.first + block - 1) / block; b * block < mine.last; ++b) {
-    double s = 0;
-    for (std::size_t k = b * block; k < (b + 1) * block && k < count; ++k) s += v[k];
-    out[b] = s;
-  }
-}
-inline double sum_of_blocks(const double* out, std::size_t count, std::size_t block) {
-  double s = 0;
-  for (std::size_t b = 0; b * block < count; ++b) s += out[b];
-  return s;
-}
-
 // Team functions. The loops of one DEM force evaluation share one parallel region: each is a team function, run
 // by every thread of the region it is called from, each thread taking its part (static_range), with barriers
 // (team_barrier) only where a thread reads what another wrote, and serial parts on the first thread (followed by

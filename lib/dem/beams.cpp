@@ -301,28 +301,18 @@ void Beams::gather(std::span<double> f, bool add, std::size_t t, std::size_t nt)
 }
 
 double Beams::energy(std::span<const double> q) const {
-  // Sums over fixed blocks of beams, each block in beam order by one thread (the threads take whole blocks),
-  // added up in block order: the same bits whatever the thread count.
-  constexpr std::size_t kBlock = 256;
-  const std::size_t count = active_.size(), blocks = (count + kBlock - 1) / kBlock;
-  energy_blocks_.resize(blocks);
-  double* part = energy_blocks_.data();
+  // Exact sums (core/exact_sum) of each thread's beams, merged: the same value whatever the thread count or the
+  // beams' order.
+  const std::size_t count = active_.size();
+  energy_parts_.assign(static_cast<std::size_t>(max_threads()), ExactSum{});
   as_team(count > kMinParallelItems, [&] {
-    const Range mine = this_thread_range(blocks);
-    const std::size_t first = mine.first * kBlock, last = std::min(count, mine.last * kBlock);
-    std::size_t b = mine.first;
-    double sum = 0;
-    each_response<BeamResponsePart::energy>(q, active_, first, last,
-                                            [&](std::size_t k, std::size_t, const BeamResponse& r) {
-                                              if (k == (b + 1) * kBlock) {
-                                                part[b++] = sum;
-                                                sum = 0;
-                                              }
-                                              sum += r.energy;
-                                            });
-    if (last > first) part[b] = sum;
+    const Range mine = this_thread_range(count);
+    ExactSum& sum = energy_parts_[static_cast<std::size_t>(thread_index())];
+    each_response<BeamResponsePart::energy>(
+        q, active_, mine.first, mine.last, [&](std::size_t, std::size_t, const BeamResponse& r) { sum.add(r.energy); });
   });
-  return sum_of_blocks(part, count, kBlock);
+  for (std::size_t t = 1; t < energy_parts_.size(); ++t) energy_parts_[0].add(energy_parts_[t]);
+  return energy_parts_[0].value();
 }
 
 void Beams::strains(std::span<const double> q, std::span<double> out) const {

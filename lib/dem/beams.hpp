@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/parallel.hpp"
 #include "core/phases.hpp"
 #include "core/state_archive.hpp"
@@ -134,7 +135,7 @@ class Beams {
   void unindex(const BeamTable& t, std::size_t k);  // takes entry k's beam out of its cells' lists
   std::vector<std::int32_t> cell_start_, cell_count_;
   std::vector<CellBeam> beams_of_;
-  mutable std::vector<double> energy_blocks_;  // energy()'s sums over fixed blocks of active beams
+  mutable std::vector<ExactSum> energy_parts_;  // energy()'s sums, a thread each
   struct Verdict {
     int mode;       // breaking_mode's
     double energy;  // elastic energy, J, when it breaks

@@ -9,14 +9,17 @@ void ContactList::reserve(std::size_t count) {
   for (auto* a : {&i, &j}) a->resize(count);
   for (auto* a : {&rx, &ry, &nx, &ny, &area, &inv_lc, &vn, &vt, &m_eff, &fn, &ft}) a->resize(count);
   for (auto& a : law_power) a.resize(count);
-  for (auto& a : block_power) a.resize(count / kPowerBlock + 1);
 }
 
 void ContactList::set_laws(std::size_t laws) {
   law_power.resize(laws);
-  block_power.resize(laws);
+  power_part.resize(laws);
   for (auto& a : law_power) a.resize(room());
-  for (auto& a : block_power) a.resize(room() / kPowerBlock + 1);
+}
+
+void ContactList::reserve_power_parts(std::size_t threads) {
+  for (auto& a : power_part)
+    if (a.size() < threads) a.resize(threads);
 }
 
 void ContactList::copy_entries(const ContactList& from, std::size_t count, std::size_t to) {
@@ -41,19 +44,22 @@ Range ContactList::mine() const {
 }
 
 double law_power(const ContactList& c, std::size_t law) {
-  // (Grouped as law_block_powers and law_power_of_blocks group it.)
-  const std::size_t count = c.size(), block = ContactList::kPowerBlock;
-  std::vector<double> sums(count / block + 1);
-  block_sums(c.law_power[law].data(), count, block, Range{0, count}, sums.data());
-  return sum_of_blocks(sums.data(), count, block);
+  ExactSum sum;
+  for (std::size_t k = 0; k < c.size(); ++k) sum.add(c.law_power[law][k]);
+  return sum.value();
 }
 
-void law_block_powers(ContactList& c, std::size_t law, std::size_t count, Range mine) {
-  block_sums(c.law_power[law].data(), count, ContactList::kPowerBlock, mine, c.block_power[law].data());
+void law_power_part(ContactList& c, std::size_t law, std::size_t count, std::size_t t) {
+  const Range mine = c.block[t];
+  ExactSum sum;
+  for (std::size_t k = mine.first; k < std::min(mine.last, count); ++k) sum.add(c.law_power[law][k]);
+  c.power_part[law][t] = sum;
 }
 
-double law_power_of_blocks(const ContactList& c, std::size_t law) {
-  return sum_of_blocks(c.block_power[law].data(), c.size(), ContactList::kPowerBlock);
+double law_power_of_parts(const ContactList& c, std::size_t law, std::size_t threads) {
+  ExactSum sum;
+  for (std::size_t t = 0; t < threads; ++t) sum.add(c.power_part[law][t]);
+  return sum.value();
 }
 
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {

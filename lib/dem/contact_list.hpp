@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/parallel.hpp"
 
 namespace frac::dem {
@@ -23,18 +24,18 @@ struct ContactList {
   std::vector<double> vn, vt, m_eff;
   // The force on i summed over the laws that ran, along n (negative: repulsive) and t, N.
   std::vector<double> fn, ft;
-  // The power of each law on each contact, W (law_power[l][k]), and its sums over fixed blocks of kPowerBlock
-  // contacts, in contact order within a block (block_sums, core/parallel.hpp; added up in block order): the
-  // same grouping whatever the thread count, so a team sums its own blocks without reading much of what the
-  // others wrote.
-  static constexpr std::size_t kPowerBlock = 256;
-  std::vector<std::vector<double>> law_power, block_power;
+  // The power of each law on each contact, W (law_power[l][k]), and its exact sum (core/exact_sum) over the
+  // contacts of each thread of the team that filled the list (power_part[l][t]), merged after the team: the
+  // same value whatever the thread count, the order of the contacts or, on several ranks, their split.
+  std::vector<std::vector<double>> law_power;
+  std::vector<std::vector<ExactSum>> power_part;
   std::size_t size() const { return count_; }  // (set by ContactSearch::find_end)
   // Room for `count` contacts (never shrinks; the size is unchanged).
   void reserve(std::size_t count);
   std::size_t room() const { return i.size(); }
-  // Room for the powers of `laws` laws.
+  // Room for the powers of `laws` laws, and their parts for teams of up to `threads` threads.
   void set_laws(std::size_t laws);
+  void reserve_power_parts(std::size_t threads);
   // The geometry of `from`'s first `count` entries copied to entries [to, to + count) (the search's fill).
   void copy_entries(const ContactList& from, std::size_t count, std::size_t to);
   // Diagnostics of the last search.
@@ -59,13 +60,13 @@ struct ContactList {
   std::size_t count_ = 0;
 };
 
-// Law l's power summed over the list, in block order.
+// Law l's power summed over the list (exactly rounded).
 double law_power(const ContactList& c, std::size_t law);
-// In a phase after every law's: the sums of law l's power over the blocks of the list (its first `count`
-// contacts) that start in `mine`, a thread's part of it. After the team, law_power_of_blocks adds them up in
-// block order: the same bits as law_power.
-void law_block_powers(ContactList& c, std::size_t law, std::size_t count, Range mine);
-double law_power_of_blocks(const ContactList& c, std::size_t law);
+// In a phase after every law's, thread t of the team that filled the list: law l's power over its block of the
+// first `count` contacts, into power_part[l][t]. After the team, law_power_of_parts merges the team's parts: the
+// same value as law_power.
+void law_power_part(ContactList& c, std::size_t law, std::size_t count, std::size_t t);
+double law_power_of_parts(const ContactList& c, std::size_t law, std::size_t threads);
 
 // Adds the contacts' forces, F = fn·n + ft·t on i and −F on j at R, and their torques about the centroids to the
 // cells' forces f (layout of q: fx, fy, torque), each cell its contacts in contact order. q: positions.

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/exact_sum.hpp"
 #include "core/option_check.hpp"
 #include "core/physical_limits.hpp"
 #include "geometry/polygon.hpp"
@@ -12,10 +13,15 @@
 namespace frac::dem {
 namespace {
 
+// Exact sums (core/exact_sum): the same value whatever the cells' order or, on several ranks, their split.
+double sum_over(const std::vector<std::size_t>& cells, const double* values) {
+  ExactSum s;
+  for (std::size_t k : cells) s.add(values[k]);
+  return s.value();
+}
+
 double mean(const std::vector<std::size_t>& cells, const double* coord) {
-  double s = 0;
-  for (std::size_t k : cells) s += coord[k];
-  return cells.empty() ? 0.0 : s / static_cast<double>(cells.size());
+  return cells.empty() ? 0.0 : sum_over(cells, coord) / static_cast<double>(cells.size());
 }
 
 // Distance from point p to the boundary of polygon poly (world coordinates).
@@ -118,9 +124,7 @@ LoadingSetup impact_kick(const Loading& loading, const mesh::CellMesh& mesh, con
 }  // namespace
 
 double LoadingProbe::stress(std::span<const double> force, std::size_t n) const {
-  double ft = 0, fb = 0;
-  for (std::size_t k : top) ft += force[n + k];
-  for (std::size_t k : bottom) fb += force[n + k];
+  const double ft = sum_over(top, force.data() + n), fb = sum_over(bottom, force.data() + n);
   return (fb - ft) / (2 * width0 * thickness);
 }
 

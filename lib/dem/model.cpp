@@ -61,6 +61,7 @@ void Model::bind(double t, std::span<const double> q, std::span<const double> v,
   ++evaluations_;
   if (physics_.contacts) search_.bind(q, contacts_);
   zero_.reserve(static_cast<std::size_t>(max_threads()));
+  contacts_.reserve_power_parts(static_cast<std::size_t>(max_threads()));
 }
 
 // One parallel loop a phase, each thread taking the same cells in every per-cell loop (static_range), so that it
@@ -106,7 +107,7 @@ void Model::contact_forces_part(std::size_t t, std::size_t nt) {
   // The power sums of the blocks of contacts that start in this thread's part of the list (added up after the
   // team), and the contacts' forces, summed over the laws, onto its own cells in contact order.
   const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
-  for (std::size_t l = 0; l < laws_.size(); ++l) law_block_powers(contacts_, l, count, contacts_.block[t]);
+  for (std::size_t l = 0; l < laws_.size(); ++l) law_power_part(contacts_, l, count, t);
   add_contact_forces_of_team(contacts_, bodies_.n, bound_q_, force_, t, nt);
 }
 
@@ -131,17 +132,18 @@ void Model::accelerations_part(std::size_t t, std::size_t nt) {
 }
 
 void Model::sums(std::size_t nt) {
-  for (std::size_t l = 0; l < laws_.size(); ++l) law_power_[l] = law_power_of_blocks(contacts_, l);
+  for (std::size_t l = 0; l < laws_.size(); ++l) law_power_[l] = law_power_of_parts(contacts_, l, nt);
   double zero = 0;
   for (std::size_t s = 0; s < nt; ++s) zero += zero_[s];
   // A non-finite force is traced to the first term that made it (the run stops at this step).
   if (zero != 0.0 && non_finite_term_.empty()) blame_non_finite(bound_q_, bound_v_);
-  boundary_power_ = 0;
+  ExactSum boundary;
   for (const Prescribed& p : prescribed_) {
     const LayerMotion& m = layers_[static_cast<std::size_t>(p.layer)];
     const double m_k = 1.0 / inv_mass_[p.index];
-    boundary_power_ += (m_k * m.acceleration(bound_t_) - force_[p.index]) * m.velocity(bound_t_);
+    boundary.add((m_k * m.acceleration(bound_t_) - force_[p.index]) * m.velocity(bound_t_));
   }
+  boundary_power_ = boundary.value();
 }
 
 std::int64_t Model::calls(std::string_view term) const {
@@ -198,31 +200,24 @@ void Model::add_prescribed(std::size_t index, double q0, int layer) {
 }
 
 std::array<double, 2> Model::kinetic_energy(std::span<const double> v) const {
-  // Sums over fixed blocks of cells, in cell order within a block, then over the blocks in order: the same
-  // bits whatever the thread count, and each thread reads mostly the velocities it wrote.
-  constexpr std::size_t kBlock = 64;
-  const std::size_t n = bodies_.n, blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::array<double, 2>>& part = energy_blocks_;
-  part.resize(blocks);
+  // Exact sums (core/exact_sum) of each thread's cells, merged: the same value whatever the thread count or the
+  // cells' order.
+  const std::size_t n = bodies_.n;
+  std::vector<std::array<ExactSum, 2>>& part = energy_parts_;
+  part.assign(static_cast<std::size_t>(max_threads()), {});
   const double* m = bodies_.mass.data();
   const double* inertia = bodies_.inertia.data();
   as_team(n > kMinParallelCoordinates, [&] {
-    const Range mine = this_thread_range(blocks);
-    for (std::size_t b = mine.first; b < mine.last; ++b) {
-      double et = 0, er = 0;
-      for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
-        et += 0.5 * m[k] * (v[k] * v[k] + v[n + k] * v[n + k]);
-        er += 0.5 * inertia[k] * v[2 * n + k] * v[2 * n + k];
-      }
-      part[b] = {et, er};
+    const Range mine = this_thread_range(n);
+    std::array<ExactSum, 2>& sum = part[static_cast<std::size_t>(thread_index())];
+    for (std::size_t k = mine.first; k < mine.last; ++k) {
+      sum[0].add(0.5 * m[k] * (v[k] * v[k] + v[n + k] * v[n + k]));
+      sum[1].add(0.5 * inertia[k] * v[2 * n + k] * v[2 * n + k]);
     }
   });
-  double et = 0, er = 0;
-  for (const auto& p : part) {
-    et += p[0];
-    er += p[1];
-  }
-  return {et, er};
+  for (std::size_t t = 1; t < part.size(); ++t)
+    for (int c = 0; c < 2; ++c) part[0][c].add(part[t][c]);
+  return {part[0][0].value(), part[0][1].value()};
 }
 
 }  // namespace frac::dem
