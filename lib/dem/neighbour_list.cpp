@@ -119,8 +119,10 @@ void NeighbourList::find_pairs(std::span<const double> q, WorldPolygons world, s
   const std::size_t n = bodies_->n;
   const double* x = q.data();
   const double* y = x + n;
-  // The pairs (i, j > i) in order of i, then of the grid scan: threads take contiguous ranges of i (in thread
-  // order) into their own buffers, joined in thread order: the same list whatever the thread count.
+  // The pairs (i, j > i) in order of i, then of j: threads take contiguous ranges of i (in thread order) into
+  // their own buffers, joined in thread order. The list, and so the contacts' order in which every cell sums their
+  // forces, is a function of the cells' indices alone: not of the grid, the thread count or (split over ranks,
+  // with indices as global ids) the rank count.
   auto& buf = t == 0 ? pairs_ : thread_pairs_[t];  // (build_grid cleared pairs_)
   if (t > 0) buf.clear();
   const std::size_t gx = grid_x_, gy = grid_y_;
@@ -149,6 +151,7 @@ void NeighbourList::find_pairs(std::span<const double> q, WorldPolygons world, s
   };
   // A pair found again keeps what it learnt; a new one starts from its facing edges.
   auto keep_pairs_of = [&](std::size_t i) {
+    const std::size_t first_of_i = buf.size();
     pairs_of(i, [&](std::size_t j, double dx, double dy) {
       const auto* const begin = previous_.data() + previous_first_[i];
       const auto* const last = previous_.data() + previous_first_[i + 1];
@@ -168,6 +171,8 @@ void NeighbourList::find_pairs(std::span<const double> q, WorldPolygons world, s
                      0,
                      {}});
     });
+    std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first_of_i), buf.end(),
+              [](const NeighbourPair& a, const NeighbourPair& b) { return a.j < b.j; });
   };
   if (gx > 0) {
     const std::size_t first = n * t / nt, last = n * (t + 1) / nt;

@@ -71,7 +71,7 @@ class NeighbourList {
   bool rebuilding_ = false;
   double skin_ = 0;                           // m
   std::vector<double> ref_;                   // q at the last build
-  std::vector<NeighbourPair> pairs_;          // in order of i, then of the grid scan
+  std::vector<NeighbourPair> pairs_;          // in order of i, then of j
   std::vector<NeighbourPair> previous_;       // the list before the rebuild under way (empty between rebuilds)
   std::vector<std::int32_t> previous_first_;  // its first pair of each cell i
   std::vector<std::vector<NeighbourPair>> thread_pairs_;  // the rebuild's buffers of the threads after the first
