@@ -4,14 +4,11 @@
 #include <mpi.h>
 
 #include <cstdlib>
-#include <stdexcept>
 
 #include "core/error.hpp"
 
 namespace frac::comm {
 namespace {
-World* started = nullptr;
-
 void finish() {
   int finalized = 0;
   MPI_Finalized(&finalized);
@@ -19,32 +16,29 @@ void finish() {
 }
 
 void check(int code, const char* what) {
-  if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+  if (code != MPI_SUCCESS) throw RuntimeError(std::string("MPI: ") + what + " failed");
 }
-}  // namespace
 
 bool launched_as_rank() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})
     if (std::getenv(name) != nullptr) return true;
   return false;
 }
+}  // namespace
 
 const World& World::start(int& argc, char**& argv) {
-  if (started != nullptr) return *started;
-  started = new World();  // (for the life of the process: collectives may run from exit handlers' callers)
-  if (!launched_as_rank()) return *started;
-  int provided = 0;
-  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
-  std::atexit(finish);
-  started->mpi_ = true;
-  check(MPI_Comm_rank(MPI_COMM_WORLD, &started->rank_), "MPI_Comm_rank");
-  check(MPI_Comm_size(MPI_COMM_WORLD, &started->size_), "MPI_Comm_size");
-  return *started;
-}
-
-const World& World::get() {
-  static const World alone;
-  return started != nullptr ? *started : alone;
+  static const World world = [&] {
+    World w;
+    if (!launched_as_rank()) return w;
+    int provided = 0;
+    check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+    std::atexit(finish);
+    w.mpi_ = true;
+    check(MPI_Comm_rank(MPI_COMM_WORLD, &w.rank_), "MPI_Comm_rank");
+    check(MPI_Comm_size(MPI_COMM_WORLD, &w.size_), "MPI_Comm_size");
+    return w;
+  }();
+  return world;
 }
 
 ExactSum World::sum(const ExactSum& part) const {
@@ -63,15 +57,6 @@ std::int64_t World::sum(std::int64_t part) const {
 double World::max(double part) const {
   if (mpi_) check(MPI_Allreduce(MPI_IN_PLACE, &part, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce (max)");
   return part;
-}
-
-void World::barrier() const {
-  if (mpi_) check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
-}
-
-void World::abort(int code) const {
-  if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
-  std::_Exit(code);
 }
 
 void require_one_rank(const World& world) {

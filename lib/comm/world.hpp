@@ -11,30 +11,20 @@
 
 namespace frac::comm {
 
-// Whether a launcher started this process as a rank (its environment: OMPI_COMM_WORLD_SIZE, PMIX_RANK,
-// PMI_RANK), read before MPI starts.
-bool launched_as_rank();
-
 class World {
  public:
   // The world of this process, MPI started (thread support: calls from the main thread only) when a launcher
-  // started it; once per process, before any other call. MPI ends at exit.
+  // started it (OMPI_COMM_WORLD_SIZE, PMIX_RANK or PMI_RANK in its environment); the first call starts it, later
+  // calls return it. MPI ends at exit.
   static const World& start(int& argc, char**& argv);
-  // The world started, or one process when none was.
-  static const World& get();
 
   int rank() const { return rank_; }
   int size() const { return size_; }
-  bool distributed() const { return mpi_; }
 
   // Collectives: every rank calls them, in the same order.
   ExactSum sum(const ExactSum& part) const;
   std::int64_t sum(std::int64_t part) const;
   double max(double part) const;
-  void barrier() const;
-
-  // Ends every rank of the job with `code` (a rank's fault, once its message is out).
-  [[noreturn]] void abort(int code) const;
 
  private:
   World() = default;

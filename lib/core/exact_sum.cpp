@@ -95,4 +95,10 @@ double ExactSum::value() const {
   return negative ? -r : r;
 }
 
+double sum_of(std::span<const ExactSum> parts) {
+  ExactSum sum;
+  for (const ExactSum& p : parts) sum.add(p);
+  return sum.value();
+}
+
 }  // namespace frac

@@ -74,4 +74,7 @@ class ExactSum {
   int pending_ = 0;
 };
 
+// The value of the exact sum of several accumulators (the parts of a team's threads).
+double sum_of(std::span<const ExactSum> parts);
+
 }  // namespace frac

@@ -311,8 +311,7 @@ double Beams::energy(std::span<const double> q) const {
     each_response<BeamResponsePart::energy>(
         q, active_, mine.first, mine.last, [&](std::size_t, std::size_t, const BeamResponse& r) { sum.add(r.energy); });
   });
-  for (std::size_t t = 1; t < energy_parts_.size(); ++t) energy_parts_[0].add(energy_parts_[t]);
-  return energy_parts_[0].value();
+  return sum_of(energy_parts_);
 }
 
 void Beams::strains(std::span<const double> q, std::span<double> out) const {

@@ -57,9 +57,7 @@ void law_power_part(ContactList& c, std::size_t law, std::size_t count, std::siz
 }
 
 double law_power_of_parts(const ContactList& c, std::size_t law, std::size_t threads) {
-  ExactSum sum;
-  for (std::size_t t = 0; t < threads; ++t) sum.add(c.power_part[law][t]);
-  return sum.value();
+  return sum_of(std::span(c.power_part[law]).first(threads));
 }
 
 void add_contact_forces(const ContactList& c, std::size_t n, std::span<const double> q, std::span<double> f) {

@@ -104,8 +104,8 @@ void Model::contact_laws_part(std::size_t t) {
 }
 
 void Model::contact_forces_part(std::size_t t, std::size_t nt) {
-  // The power sums of the blocks of contacts that start in this thread's part of the list (added up after the
-  // team), and the contacts' forces, summed over the laws, onto its own cells in contact order.
+  // The laws' exact power sums over this thread's block of the list (merged after the team), and the contacts'
+  // forces, summed over the laws, onto its own cells in contact order.
   const std::size_t count = contacts_.block[nt - 1].last;  // (the blocks cover the list in order)
   for (std::size_t l = 0; l < laws_.size(); ++l) law_power_part(contacts_, l, count, t);
   add_contact_forces_of_team(contacts_, bodies_.n, bound_q_, force_, t, nt);
@@ -203,21 +203,20 @@ std::array<double, 2> Model::kinetic_energy(std::span<const double> v) const {
   // Exact sums (core/exact_sum) of each thread's cells, merged: the same value whatever the thread count or the
   // cells' order.
   const std::size_t n = bodies_.n;
-  std::vector<std::array<ExactSum, 2>>& part = energy_parts_;
-  part.assign(static_cast<std::size_t>(max_threads()), {});
+  for (auto& part : energy_parts_) part.assign(static_cast<std::size_t>(max_threads()), ExactSum{});
   const double* m = bodies_.mass.data();
   const double* inertia = bodies_.inertia.data();
   as_team(n > kMinParallelCoordinates, [&] {
     const Range mine = this_thread_range(n);
-    std::array<ExactSum, 2>& sum = part[static_cast<std::size_t>(thread_index())];
+    const auto t = static_cast<std::size_t>(thread_index());
+    ExactSum& translational = energy_parts_[0][t];
+    ExactSum& rotational = energy_parts_[1][t];
     for (std::size_t k = mine.first; k < mine.last; ++k) {
-      sum[0].add(0.5 * m[k] * (v[k] * v[k] + v[n + k] * v[n + k]));
-      sum[1].add(0.5 * inertia[k] * v[2 * n + k] * v[2 * n + k]);
+      translational.add(0.5 * m[k] * (v[k] * v[k] + v[n + k] * v[n + k]));
+      rotational.add(0.5 * inertia[k] * v[2 * n + k] * v[2 * n + k]);
     }
   });
-  for (std::size_t t = 1; t < part.size(); ++t)
-    for (int c = 0; c < 2; ++c) part[0][c].add(part[t][c]);
-  return {part[0][0].value(), part[0][1].value()};
+  return {sum_of(energy_parts_[0]), sum_of(energy_parts_[1])};
 }
 
 }  // namespace frac::dem

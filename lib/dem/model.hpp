@@ -112,7 +112,7 @@ class Model final : public dynamics::System {
   Physics physics_;
   Beams beams_;
   ContactSearch search_;
-  mutable std::vector<std::array<ExactSum, 2>> energy_parts_;  // kinetic_energy's sums, a thread each
+  mutable std::array<std::vector<ExactSum>, 2> energy_parts_;  // kinetic_energy's sums, a thread each
   ContactList contacts_;
   ContactLaws laws_;
   std::vector<std::string> terms_;
